@@ -1,0 +1,31 @@
+#pragma once
+// The subcommands of `voxgi`. Each returns the process exit code; errors are thrown and
+// reported by main().
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/graph/compiler.hpp"
+#include "engine/graph/pass.hpp"
+#include "engine/graph/plugin_loader.hpp"
+
+namespace voxgi::cli {
+
+int render_command(const std::vector<std::string>& args);
+int graph_command(const std::vector<std::string>& args);
+int passes_command(const std::vector<std::string>& args);
+int devices_command(const std::vector<std::string>& args);
+
+// A graph path as given, or, for a relative path that does not exist from the working
+// directory, the same path inside the source tree (so `graphs/default.json` works anywhere).
+std::filesystem::path resolve_graph_path(const std::string& arg);
+
+// "--set key=value" arguments → overrides; throws UsageError naming the bad argument.
+std::map<std::string, std::string> parse_overrides(const std::vector<std::string>& sets);
+
+// Loads the plugins a graph needs into `registry`.
+void load_plugins_for(const graph::GraphDesc& desc, graph::Registry& registry);
+
+}  // namespace voxgi::cli

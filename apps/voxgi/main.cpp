@@ -1,0 +1,92 @@
+// voxgi: the command-line front end. Every error ends in one message and a non-zero exit:
+// 2 for a wrong command line, 1 for everything else.
+
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "apps/voxgi/cli_args.hpp"
+#include "apps/voxgi/commands.hpp"
+#include "engine/gpu/context.hpp"
+
+namespace voxgi::cli {
+
+std::filesystem::path resolve_graph_path(const std::string& arg) {
+  const std::filesystem::path path(arg);
+  if (std::filesystem::exists(path) || path.is_absolute()) return path;
+  const std::filesystem::path in_source = std::filesystem::path(VOXGI_REPO_DIR) / path;
+  return std::filesystem::exists(in_source) ? in_source : path;
+}
+
+std::map<std::string, std::string> parse_overrides(const std::vector<std::string>& sets) {
+  std::map<std::string, std::string> overrides;
+  for (const std::string& set : sets) {
+    const size_t eq = set.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw UsageError("--set '" + set + "': expected KEY=VALUE, e.g. --set lighting.pcf_radius=2");
+    }
+    overrides[set.substr(0, eq)] = set.substr(eq + 1);
+  }
+  return overrides;
+}
+
+void load_plugins_for(const graph::GraphDesc& desc, graph::Registry& registry) {
+  graph::PluginLoader loader(graph::PluginLoader::default_search_dirs());
+  loader.load_for_graph(desc, registry);
+}
+
+int devices_command(const std::vector<std::string>& args) {
+  if (!args.empty()) throw UsageError("voxgi devices: takes no arguments");
+  const std::vector<std::string> devices = gpu::Context::list_devices();
+  if (devices.empty()) {
+    std::cout << "no Vulkan device found: install mesa-vulkan-drivers (lavapipe) or a GPU driver\n";
+    return 1;
+  }
+  for (const std::string& device : devices) std::cout << device << "\n";
+  return 0;
+}
+
+}  // namespace voxgi::cli
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: voxgi <command> [options]\n"
+    "commands:\n"
+    "  render          render a scene through a graph to PNG and EXR (voxgi render --help)\n"
+    "  graph check     validate a graph file\n"
+    "  graph explain   print the compiled schedule, culled passes and resources\n"
+    "  passes          list the registered pass types and their parameters\n"
+    "  devices         list the Vulkan devices\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace voxgi::cli;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::cout << kUsage;
+    return args.empty() ? 2 : 0;
+  }
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  try {
+    if (args[0] == "render") return render_command(rest);
+    if (args[0] == "graph") return graph_command(rest);
+    if (args[0] == "passes") return passes_command(rest);
+    if (args[0] == "devices") return devices_command(rest);
+    std::vector<std::string> commands = {"render", "graph", "passes", "devices"};
+    std::string message = "voxgi: unknown command '" + args[0] + "'";
+    if (std::string close = closest_match(args[0], commands); !close.empty()) {
+      message += " (did you mean '" + close + "'?)";
+    }
+    throw UsageError(message);
+  } catch (const UsageError& e) {
+    std::cerr << "voxgi: error: " << e.what() << "\n" << kUsage;
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "voxgi: error: " << e.what() << "\n";
+    return 1;
+  }
+}

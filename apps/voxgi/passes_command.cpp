@@ -1,0 +1,98 @@
+// voxgi passes [--markdown]: every registered pass type with its slots and parameters,
+// generated from the plugins' own declarations.
+
+#include <iostream>
+#include <sstream>
+
+#include "apps/voxgi/cli_args.hpp"
+#include "apps/voxgi/commands.hpp"
+
+namespace voxgi::cli {
+namespace {
+
+std::string param_type_name(const graph::ParamSpec& p) {
+  switch (p.type) {
+    case graph::ParamType::Bool: return "bool";
+    case graph::ParamType::Int: return "int";
+    case graph::ParamType::Float: return "float";
+    case graph::ParamType::Enum: return "enum";
+  }
+  return "?";
+}
+
+std::string default_text(const graph::ParamSpec& p) {
+  std::ostringstream out;
+  switch (p.type) {
+    case graph::ParamType::Bool: out << (p.default_value != 0.0 ? "true" : "false"); break;
+    case graph::ParamType::Enum: {
+      const size_t i = static_cast<size_t>(p.default_value);
+      out << (i < p.choices.size() ? p.choices[i] : "?");
+      break;
+    }
+    default: out << p.default_value;
+  }
+  return out.str();
+}
+
+std::string range_text(const graph::ParamSpec& p) {
+  std::ostringstream out;
+  if (p.type == graph::ParamType::Enum) {
+    for (size_t i = 0; i < p.choices.size(); ++i) out << (i ? " \\| " : "") << p.choices[i];
+  } else if (p.type != graph::ParamType::Bool) {
+    out << "[" << p.min << ", " << p.max << "]";
+  }
+  return out.str();
+}
+
+std::string slots_text(const std::vector<graph::SlotSpec>& slots) {
+  std::string text;
+  for (const graph::SlotSpec& s : slots) {
+    text += (text.empty() ? "" : ", ") + s.name + (s.optional ? "?" : "");
+  }
+  return text.empty() ? "-" : text;
+}
+
+}  // namespace
+
+int passes_command(const std::vector<std::string>& argv) {
+  Args args("voxgi passes", {{"markdown", false, false, "", "print a Markdown table"},
+                             {"help", false, false, "", "show this help"}});
+  args.parse(argv);
+  if (args.flag("help")) {
+    std::cout << "usage: voxgi passes [--markdown]\n" << args.help();
+    return 0;
+  }
+  graph::Registry registry;
+  graph::PluginLoader loader(graph::PluginLoader::default_search_dirs());
+  loader.load_all(registry);
+  const bool markdown = args.flag("markdown");
+  for (const graph::PassTypeInfo* info : registry.all()) {
+    if (markdown) {
+      std::cout << "### `" << info->type << "`\n\n" << info->doc << "\n\n"
+                << "inputs: " << slots_text(info->inputs) << " — outputs: "
+                << slots_text(info->outputs) << " (`?` optional)\n\n";
+      if (!info->params.empty()) {
+        std::cout << "| parameter | type | default | range | live | description |\n"
+                  << "|---|---|---|---|---|---|\n";
+        for (const graph::ParamSpec& p : info->params) {
+          std::cout << "| `" << p.name << "` | " << param_type_name(p) << " | " << default_text(p)
+                    << " | " << range_text(p) << " | " << (p.live ? "yes" : "rebuild") << " | "
+                    << p.doc << " |\n";
+        }
+        std::cout << "\n";
+      }
+      continue;
+    }
+    std::cout << info->type << " — " << info->doc << "\n"
+              << "  inputs:  " << slots_text(info->inputs) << "\n"
+              << "  outputs: " << slots_text(info->outputs) << "\n";
+    for (const graph::ParamSpec& p : info->params) {
+      std::cout << "  " << p.name << " (" << param_type_name(p) << ", default " << default_text(p);
+      if (const std::string range = range_text(p); !range.empty()) std::cout << ", " << range;
+      std::cout << (p.live ? "" : ", rebuilds") << "): " << p.doc << "\n";
+    }
+  }
+  return 0;
+}
+
+}  // namespace voxgi::cli

@@ -1,0 +1,144 @@
+#pragma once
+// The Vulkan 1.3 context: instance, device choice, one graphics+compute queue, memory,
+// cached samplers, one-shot command submission and validation-layer message capture.
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "engine/gpu/memory.hpp"
+
+namespace voxgi::gpu {
+
+struct ContextOptions {
+  bool validation = false;                  // needs VK_LAYER_KHRONOS_validation
+  bool synchronization_validation = false;  // implies validation
+  // "" = automatic choice, else a device index ("1") or a case-insensitive substring of
+  // the device name ("llvmpipe").
+  std::string device;
+  std::vector<const char*> instance_extensions;  // extra, e.g. for a window surface
+  std::vector<const char*> device_extensions;    // extra, e.g. VK_KHR_swapchain
+};
+
+// What the chosen device can do beyond the required baseline.
+struct DeviceFeatures {
+  bool conservative_rasterization = false;  // VK_EXT_conservative_rasterization
+  bool atomic_float_add_buffer = false;     // shaderBufferFloat32AtomicAdd
+  bool atomic_float_add_image = false;      // shaderImageFloat32AtomicAdd
+  bool geometry_shader = false;
+  bool timestamps = false;  // graphics+compute queue supports timestamps
+  float timestamp_period_ns = 1.0f;
+  uint32_t max_push_descriptors = 0;
+};
+
+// Every linear kind also filters linearly between mips (so textureLod works on mip chains);
+// the *Mipmapped kinds add anisotropic filtering where the device has it.
+enum class SamplerKind {
+  LinearClamp,
+  LinearRepeat,
+  NearestClamp,
+  ShadowCompare,  // LESS_OR_EQUAL compare, linear, clamp-to-border opaque white
+  LinearClampMipmapped,
+  LinearRepeatMipmapped,
+};
+
+class Context {
+ public:
+  // Throws Error when no suitable device exists, when options.device matches none (the
+  // message lists the devices), or when validation is asked for but the layer is missing.
+  explicit Context(const ContextOptions& options);
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physical_device() const { return physical_device_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queue_family() const { return queue_family_; }
+
+  const std::string& device_name() const { return device_name_; }
+  VkPhysicalDeviceType device_type() const { return device_type_; }
+  // One line: name, type, driver, Vulkan API version.
+  std::string device_summary() const;
+  const DeviceFeatures& features() const { return features_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  bool has_debug_utils() const { return debug_utils_; }
+
+  Allocator& allocator() { return *allocator_; }
+
+  // Created on first use, then cached for the lifetime of the context.
+  VkSampler sampler(SamplerKind kind);
+
+  // Records a one-shot command buffer, submits it and waits for the queue to finish it.
+  // Serialised by a mutex, so any thread may call it.
+  void immediate_submit(const std::function<void(VkCommandBuffer)>& record);
+  // A resettable command pool of the queue family; for the caller's own command buffers
+  // (used from one thread only).
+  VkCommandPool command_pool() const { return command_pool_; }
+  // vkQueueSubmit2 on the queue, serialised with immediate_submit (the queue is shared).
+  void submit(const VkSubmitInfo2& info, VkFence fence);
+  // vkQueueWaitIdle, serialised like submit().
+  void wait_idle();
+
+  // Validation-layer messages of severity WARNING or ERROR since the last clear.
+  size_t validation_message_count() const;
+  std::vector<std::string> validation_messages() const;
+  void clear_validation_messages();
+  // Called for every recorded message, in addition to recording it.
+  void set_validation_observer(std::function<void(const std::string&)> observer);
+
+  // Names an object for validation messages and debuggers; a no-op without debug utils.
+  void set_debug_name(VkObjectType type, uint64_t handle, const std::string& name);
+
+  // "index: name (type, driver, API x.y.z)" for every physical device.
+  static std::vector<std::string> list_devices();
+
+ private:
+  void release();
+  void create_instance(const ContextOptions& options);
+  void choose_physical_device(const ContextOptions& options);
+  void create_device(const ContextOptions& options);
+  void record_validation_message(const std::string& message);
+  static VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(
+      VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+      const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  bool debug_utils_ = false;
+  PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
+
+  VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties_{};
+  std::string device_name_;
+  std::string driver_name_;
+  VkPhysicalDeviceType device_type_ = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+  DeviceFeatures features_;
+  bool sampler_anisotropy_ = false;
+
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queue_family_ = 0;
+  std::unique_ptr<Allocator> allocator_;
+
+  std::mutex submit_mutex_;
+  VkCommandPool command_pool_ = VK_NULL_HANDLE;
+  VkCommandPool immediate_pool_ = VK_NULL_HANDLE;
+  VkFence immediate_fence_ = VK_NULL_HANDLE;
+
+  std::mutex sampler_mutex_;
+  std::map<SamplerKind, VkSampler> samplers_;
+
+  mutable std::mutex validation_mutex_;
+  std::vector<std::string> validation_messages_;
+  std::function<void(const std::string&)> validation_observer_;
+};
+
+}  // namespace voxgi::gpu

@@ -1,0 +1,952 @@
+#include "engine/graph/compiler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <queue>
+#include <set>
+
+#include "engine/graph/expression.hpp"
+#include "engine/graph/resource_plan.hpp"
+
+namespace voxgi::graph {
+
+const SlotBinding* CompiledPass::binding(std::string_view slot) const {
+  for (const SlotBinding& b : bindings) {
+    if (b.slot == slot) return &b;
+  }
+  return nullptr;
+}
+
+int CompiledGraph::find_resource(std::string_view resource_name) const {
+  for (size_t i = 0; i < resources.size(); ++i) {
+    if (resources[i].info.name == resource_name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+const CompiledPass* CompiledGraph::find_pass(std::string_view pass_name) const {
+  for (const CompiledPass& p : passes) {
+    if (p.name == pass_name) return &p;
+  }
+  return nullptr;
+}
+
+const CulledPass* CompiledGraph::find_culled(std::string_view pass_name) const {
+  for (const CulledPass& p : culled) {
+    if (p.name == pass_name) return &p;
+  }
+  return nullptr;
+}
+
+namespace {
+
+constexpr uint32_t kMaxImageSize2D = 16384;
+constexpr uint32_t kMaxImageSize3D = 2048;
+constexpr double kMaxBufferBytes = 4.0 * 1024 * 1024 * 1024;
+
+struct PassWork {
+  const PassDesc* desc = nullptr;
+  const PassTypeInfo* info = nullptr;  // null: unknown type
+  bool usable = false;                 // known type and a unique name: part of the graph
+  std::map<std::string, ParamValue> params;
+  std::vector<SlotBinding> bindings;
+  std::string culled;  // the reason, empty while live
+};
+
+bool binding_reads(const SlotBinding& b) {
+  return b.is_input || b.spec->access == Access::StorageReadWrite;
+}
+bool binding_writes(const SlotBinding& b) {
+  return !b.is_input && access_writes(b.spec->access);
+}
+
+std::string kinds_text(ResourceKinds kinds) {
+  std::string text;
+  for (ResourceKind k : {ResourceKind::Image2D, ResourceKind::Image3D, ResourceKind::Clipmap,
+                         ResourceKind::Buffer}) {
+    if (kinds & static_cast<uint32_t>(k)) text += (text.empty() ? "" : ", ") + kind_name(k);
+  }
+  return text;
+}
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& n : names) text += (text.empty() ? "'" : ", '") + n + "'";
+  return text;
+}
+
+class Compiler {
+ public:
+  Compiler(const GraphDesc& desc, const Registry& registry, const CompileOptions& options)
+      : desc_(desc), registry_(registry), options_(options) {}
+
+  CompiledGraph run() {
+    graph_.file = desc_.file;
+    graph_.name = desc_.name;
+    graph_.viewport_width = options_.viewport_width;
+    graph_.viewport_height = options_.viewport_height;
+    graph_.full_barriers = options_.full_barriers;
+    resolve_parameters();
+    resolve_resources();
+    resolve_passes();
+    apply_pass_overrides();
+    check_outputs_declared();
+    check_reads_have_writers();
+    check_cycles();
+    diags_.throw_if_any();
+    cull();
+    check_outputs_written();
+    diags_.throw_if_any();
+    schedule();
+    plan_resources(graph_, options_);
+    return std::move(graph_);
+  }
+
+ private:
+  // ---- graph parameters and --set -------------------------------------------------------
+  void resolve_parameters() {
+    for (const GraphParam& p : desc_.parameters) graph_.parameters[p.name] = p.value;
+    for (const auto& [key, text] : options_.overrides) {
+      auto it = graph_.parameters.find(key);
+      if (it == graph_.parameters.end()) continue;  // a pass parameter, resolved later
+      const GraphParam* declared = nullptr;
+      for (const GraphParam& p : desc_.parameters) {
+        if (p.name == key) declared = &p;
+      }
+      if (text == "true" || text == "false") {
+        it->second = text == "true" ? 1.0 : 0.0;
+        continue;
+      }
+      char* end = nullptr;
+      const double number = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !std::isfinite(number)) {
+        diags_.error(override_loc(key, text), {}, key,
+                     std::string("expected ") +
+                         (declared && declared->is_bool ? "true or false" : "a number") +
+                         ", found '" + text + "'");
+        continue;
+      }
+      it->second = number;
+    }
+  }
+
+  static SourceLoc override_loc(const std::string& key, const std::string& text) {
+    return SourceLoc{"--set " + key + "=" + text, 0, 0};
+  }
+
+  ExpressionEnv size_env(double viewport) const {
+    ExpressionEnv env;
+    env.params = graph_.parameters;
+    env.identifiers = {{"viewport", viewport},
+                       {"viewport.width", static_cast<double>(options_.viewport_width)},
+                       {"viewport.height", static_cast<double>(options_.viewport_height)}};
+    env.identifier_kind = "name";
+    env.identifier_help =
+        "sizes may use viewport, viewport.width, viewport.height and ${parameters}";
+    return env;
+  }
+
+  std::optional<double> evaluate(const ExprField& f, const std::string& pass,
+                                 const std::string& field, const ExpressionEnv& env) {
+    if (f.is_number) return f.number;
+    try {
+      return evaluate_expression(f.text, env);
+    } catch (const ExpressionError& e) {
+      SourceLoc loc = f.loc;
+      loc.column += e.column();  // past the opening quote
+      diags_.error(loc, pass, field,
+                   "in expression \"" + f.text + "\" at column " + std::to_string(e.column()) +
+                       ": " + e.what(),
+                   e.hint());
+      return std::nullopt;
+    }
+  }
+
+  // A positive whole number no larger than `max`; fractions round down.
+  std::optional<uint32_t> evaluate_count(const ExprField& f, const std::string& field,
+                                         const ExpressionEnv& env, double max, const char* what) {
+    const std::optional<double> v = evaluate(f, {}, field, env);
+    if (!v) return std::nullopt;
+    const double whole = std::floor(*v);
+    if (whole < 1.0 || whole > max) {
+      diags_.error(f.loc, {}, field,
+                   std::string(what) + " '" + f.text + "' evaluates to " + format_number(*v) +
+                       ", expected 1 to " + format_number(max));
+      return std::nullopt;
+    }
+    return static_cast<uint32_t>(whole);
+  }
+
+  // ---- resources ------------------------------------------------------------------------
+  void resolve_resources() {
+    resource_ok_.assign(desc_.resources.size(), false);
+    graph_.resources.resize(desc_.resources.size());
+    for (size_t i = 0; i < desc_.resources.size(); ++i) {
+      resource_ok_[i] = resolve_resource(desc_.resources[i], graph_.resources[i]);
+    }
+  }
+
+  bool resolve_resource(const ResourceDesc& rd, CompiledResource& r) {
+    const std::string field = "resources." + rd.name;
+    r.loc = rd.loc;
+    r.info.name = rd.name;
+    r.info.persistent = rd.persistent;
+    static const std::vector<std::string> types = {"image2d", "image3d", "clipmap", "buffer"};
+    if (rd.type.empty()) return false;  // reported by the parser
+    if (rd.type == "image2d") {
+      r.info.kind = ResourceKind::Image2D;
+    } else if (rd.type == "image3d") {
+      r.info.kind = ResourceKind::Image3D;
+    } else if (rd.type == "clipmap") {
+      r.info.kind = ResourceKind::Clipmap;
+    } else if (rd.type == "buffer") {
+      r.info.kind = ResourceKind::Buffer;
+    } else {
+      diags_.error(
+          rd.type_loc, {}, field + ".type",
+          "unknown resource type '" + rd.type + "' (expected image2d, image3d, clipmap or buffer)",
+          did_you_mean(rd.type, types));
+      return false;
+    }
+    const ResourceKind kind = r.info.kind;
+    bool ok = true;
+    if (kind == ResourceKind::Buffer) {
+      if (!rd.format.empty()) {
+        diags_.error(rd.format_loc, {}, field + ".format", "buffers have no format");
+        ok = false;
+      }
+    } else if (rd.format.empty()) {
+      diags_.error(rd.loc, {}, field + ".format",
+                   "missing field 'format' (expected one of " + quoted_list(format_names()) + ")");
+      ok = false;
+    } else {
+      r.info.format = format_from_name(rd.format);
+      if (r.info.format == VK_FORMAT_UNDEFINED) {
+        diags_.error(rd.format_loc, {}, field + ".format", "unknown format '" + rd.format + "'",
+                     did_you_mean(rd.format, format_names()));
+        ok = false;
+      } else if (is_depth_format(r.info.format) && kind != ResourceKind::Image2D) {
+        diags_.error(rd.format_loc, {}, field + ".format",
+                     "depth format '" + rd.format + "' is only allowed for image2d resources");
+        ok = false;
+      }
+    }
+    ok = resolve_extent(rd, r, field) && ok;
+    ok = resolve_mips_and_layers(rd, r, field) && ok;
+    if (ok) r.bytes = estimate_bytes(r.info);
+    return ok;
+  }
+
+  bool resolve_extent(const ResourceDesc& rd, CompiledResource& r, const std::string& field) {
+    const ResourceKind kind = r.info.kind;
+    if (kind == ResourceKind::Clipmap) {
+      if (!rd.size.empty()) {
+        diags_.error(rd.size_loc, {}, field + ".size",
+                     "clipmaps are sized by 'resolution' and 'levels', not 'size'");
+        return false;
+      }
+      if (!rd.resolution.present || !rd.levels.present) {
+        diags_.error(rd.loc, {}, field + (rd.resolution.present ? ".levels" : ".resolution"),
+                     "a clipmap needs both 'resolution' and 'levels'");
+        return false;
+      }
+      const auto res = evaluate_count(rd.resolution, field + ".resolution", size_env(0),
+                                      kMaxImageSize3D, "resolution");
+      const auto levels = evaluate_count(rd.levels, field + ".levels", size_env(0), 16, "levels");
+      if (!res || !levels) return false;
+      if (*res * *levels > kMaxImageSize3D) {
+        diags_.error(rd.levels.loc, {}, field + ".levels",
+                     "resolution x levels = " + std::to_string(*res * *levels) +
+                         " exceeds the 3D image limit " + std::to_string(kMaxImageSize3D));
+        return false;
+      }
+      r.info.extent = {*res, *res, *res * *levels};
+      r.info.clipmap_levels = *levels;
+      return true;
+    }
+    for (const ExprField* f : {&rd.resolution, &rd.levels}) {
+      if (f->present) {
+        diags_.error(f->loc, {}, field + (f == &rd.resolution ? ".resolution" : ".levels"),
+                     "only clipmaps have 'resolution' and 'levels' (use 'size')");
+        return false;
+      }
+    }
+    if (rd.size.empty()) {
+      diags_.error(
+          rd.loc, {}, field + ".size",
+          kind == ResourceKind::Buffer ? "missing field 'size' (bytes)" : "missing field 'size'");
+      return false;
+    }
+    const size_t max_components = kind == ResourceKind::Image2D   ? 2
+                                  : kind == ResourceKind::Image3D ? 3
+                                                                  : 1;
+    if (rd.size.size() > max_components || (kind == ResourceKind::Image3D && rd.size.size() == 2)) {
+      diags_.error(rd.size_loc, {}, field + ".size",
+                   "a " + kind_name(kind) + " size has " +
+                       (kind == ResourceKind::Image2D   ? std::string("1 or 2 components [w, h]")
+                        : kind == ResourceKind::Image3D ? std::string("1 or 3 components [w, h, d]")
+                                                        : std::string("1 component (bytes)")) +
+                       ", found " + std::to_string(rd.size.size()));
+      return false;
+    }
+    if (kind == ResourceKind::Buffer) {
+      const auto bytes =
+          evaluate_count(rd.size[0], field + ".size", size_env(0), kMaxBufferBytes, "size");
+      if (!bytes) return false;
+      r.info.buffer_size = *bytes;
+      return true;
+    }
+    const double max = kind == ResourceKind::Image2D ? kMaxImageSize2D : kMaxImageSize3D;
+    const double w = options_.viewport_width;
+    const double h = options_.viewport_height;
+    uint32_t extent[3] = {1, 1, 1};
+    const size_t dims = kind == ResourceKind::Image2D ? 2 : 3;
+    for (size_t c = 0; c < dims; ++c) {
+      // "viewport" alone means the width for x and the height for y.
+      const ExprField& f = rd.size.size() == 1 ? rd.size[0] : rd.size[c];
+      if (rd.size.size() == 1 && c > 0 && f.is_number) {
+        extent[c] = extent[0];
+        continue;
+      }
+      const auto v = evaluate_count(f, field + ".size", size_env(c == 1 ? h : w), max, "size");
+      if (!v) return false;
+      extent[c] = *v;
+    }
+    r.info.extent = {extent[0], extent[1], extent[2]};
+    return true;
+  }
+
+  bool resolve_mips_and_layers(const ResourceDesc& rd, CompiledResource& r,
+                               const std::string& field) {
+    const ResourceKind kind = r.info.kind;
+    if (kind == ResourceKind::Buffer) {
+      for (const ExprField* f : {&rd.mips, &rd.layers}) {
+        if (f->present) {
+          diags_.error(f->loc, {}, field + (f == &rd.mips ? ".mips" : ".layers"),
+                       "buffers have no mips or layers");
+          return false;
+        }
+      }
+      return true;
+    }
+    const VkExtent3D e = r.info.extent;
+    uint32_t largest = std::max(e.width, e.height);
+    if (kind != ResourceKind::Image2D)
+      largest = std::max(largest, kind == ResourceKind::Clipmap ? e.width : e.depth);
+    uint32_t full_chain = 1;
+    while (largest > 1) {
+      largest >>= 1;
+      ++full_chain;
+    }
+    if (rd.mips.present) {
+      if (!rd.mips.is_number && rd.mips.text == "full") {
+        r.info.mip_levels = full_chain;
+      } else {
+        const auto mips = evaluate_count(rd.mips, field + ".mips", size_env(0), 64, "mips");
+        if (!mips) return false;
+        if (*mips > full_chain) {
+          diags_.error(rd.mips.loc, {}, field + ".mips",
+                       "mip count " + std::to_string(*mips) + " exceeds the full chain of " +
+                           std::to_string(full_chain) + " levels for this size");
+          return false;
+        }
+        r.info.mip_levels = *mips;
+      }
+    }
+    if (rd.layers.present) {
+      if (kind != ResourceKind::Image2D) {
+        diags_.error(rd.layers.loc, {}, field + ".layers", "only image2d resources have layers");
+        return false;
+      }
+      const auto layers = evaluate_count(rd.layers, field + ".layers", size_env(0), 2048, "layers");
+      if (!layers) return false;
+      r.info.array_layers = *layers;
+    }
+    return true;
+  }
+
+  int resource_index(std::string_view name) const {
+    for (size_t i = 0; i < desc_.resources.size(); ++i) {
+      if (desc_.resources[i].name == name) return static_cast<int>(i);
+    }
+    return -1;
+  }
+
+  std::vector<std::string> resource_names() const {
+    std::vector<std::string> names;
+    for (const ResourceDesc& r : desc_.resources) names.push_back(r.name);
+    return names;
+  }
+
+  // ---- passes ---------------------------------------------------------------------------
+  void resolve_passes() {
+    std::map<std::string, const PassDesc*> first_by_name;
+    std::vector<std::string> types;
+    for (const PassTypeInfo* info : registry_.all()) types.push_back(info->type);
+    for (const PassDesc& pd : desc_.passes) {
+      PassWork w;
+      w.desc = &pd;
+      bool unique = !pd.name.empty();
+      if (unique) {
+        auto [it, inserted] = first_by_name.emplace(pd.name, &pd);
+        if (!inserted) {
+          diags_.error(pd.name_loc, pd.name, "name",
+                       "duplicate pass name (first defined at line " +
+                           std::to_string(it->second->name_loc.line) + ")");
+          unique = false;
+        }
+      }
+      if (!pd.type.empty()) {
+        w.info = registry_.find(pd.type);
+        if (!w.info) {
+          diags_.error(pd.type_loc, pd.name, "type", "unknown pass type '" + pd.type + "'",
+                       did_you_mean(pd.type, types));
+        }
+      }
+      if (w.info) {
+        resolve_params(w);
+        resolve_bindings(w);
+      }
+      resolve_when(w);
+      w.usable = w.info && unique;
+      work_.push_back(std::move(w));
+    }
+  }
+
+  ExpressionEnv param_env() const {
+    ExpressionEnv env;
+    env.params = graph_.parameters;
+    env.identifier_kind = "name";
+    env.identifier_help = "pass parameters may use numbers and ${graph parameters}";
+    return env;
+  }
+
+  void resolve_params(PassWork& w) {
+    const PassDesc& pd = *w.desc;
+    for (const ParamSpec& spec : w.info->params) {
+      ParamValue v;
+      v.number = spec.default_value;
+      if (spec.type == ParamType::Enum) {
+        const auto index = static_cast<size_t>(spec.default_value);
+        v.text = index < spec.choices.size() ? spec.choices[index] : std::string();
+      } else if (spec.type == ParamType::Bool) {
+        v.text = spec.default_value != 0.0 ? "true" : "false";
+      } else {
+        v.text = format_number(spec.default_value);
+      }
+      w.params[spec.name] = v;
+    }
+    std::vector<std::string> names;
+    for (const ParamSpec& spec : w.info->params) names.push_back(spec.name);
+    for (const ParamSetting& setting : pd.params) {
+      const std::string field = "params." + setting.name;
+      const ParamSpec* spec = find_param(*w.info, setting.name);
+      if (!spec) {
+        diags_.error(setting.name_loc, pd.name, field,
+                     "unknown parameter '" + setting.name + "' of pass type '" + pd.type + "'",
+                     did_you_mean(setting.name, names));
+        continue;
+      }
+      const json::Value& value = setting.value;
+      try {
+        if (spec->type == ParamType::Enum) {
+          if (!value.is_string()) {
+            throw GraphError(message_only(std::string("expected a choice name string, found ") +
+                                          json::kind_name(value.kind())));
+          }
+          w.params[spec->name] = parse_param_value(*spec, field, value.as_string());
+        } else if (value.is_string()) {
+          const ExprField f{true, false, 0.0, value.as_string(), value.loc()};
+          const std::optional<double> number = evaluate(f, pd.name, field, param_env());
+          if (number) w.params[spec->name] = param_from_number(*spec, field, *number);
+        } else if (spec->type == ParamType::Bool) {
+          if (!value.is_bool()) {
+            throw GraphError(message_only(std::string("expected true or false, found ") +
+                                          json::kind_name(value.kind())));
+          }
+          w.params[spec->name] = param_from_number(*spec, field, value.as_bool() ? 1.0 : 0.0);
+        } else {
+          if (!value.is_number()) {
+            throw GraphError(
+                message_only(std::string("expected ") +
+                             (spec->type == ParamType::Int ? "an integer" : "a number") +
+                             ", found " + json::kind_name(value.kind())));
+          }
+          w.params[spec->name] = param_from_number(*spec, field, value.as_number());
+        }
+      } catch (const GraphError& e) {
+        for (const Diagnostic& d : e.diagnostics()) {
+          diags_.error(value.loc(), pd.name, field, d.message, d.hint);
+        }
+      }
+    }
+  }
+
+  static const ParamSpec* find_param(const PassTypeInfo& info, std::string_view name) {
+    for (const ParamSpec& spec : info.params) {
+      if (spec.name == name) return &spec;
+    }
+    return nullptr;
+  }
+
+  static const SlotSpec* find_slot(const std::vector<SlotSpec>& slots, std::string_view name) {
+    for (const SlotSpec& s : slots) {
+      if (s.name == name) return &s;
+    }
+    return nullptr;
+  }
+
+  void resolve_bindings(PassWork& w) {
+    const PassDesc& pd = *w.desc;
+    for (const bool is_input : {true, false}) {
+      const std::vector<BindingDesc>& bindings = is_input ? pd.inputs : pd.outputs;
+      const std::vector<SlotSpec>& specs = is_input ? w.info->inputs : w.info->outputs;
+      const std::vector<SlotSpec>& others = is_input ? w.info->outputs : w.info->inputs;
+      const std::string section = is_input ? "in" : "out";
+      // A slot written in the wrong section is reported there, not again as missing.
+      std::set<std::string> mentioned;
+      for (const BindingDesc& b : pd.inputs) mentioned.insert(b.slot);
+      for (const BindingDesc& b : pd.outputs) mentioned.insert(b.slot);
+      for (const BindingDesc& b : bindings) {
+        const std::string field = section + "." + b.slot;
+        const SlotSpec* spec = find_slot(specs, b.slot);
+        if (!spec) {
+          if (find_slot(others, b.slot)) {
+            diags_.error(b.slot_loc, pd.name, field,
+                         "'" + b.slot + "' is an " + (is_input ? "output" : "input") +
+                             " slot of pass type '" + pd.type + "'; move it to \"" +
+                             (is_input ? "out" : "in") + "\"");
+          } else {
+            std::vector<std::string> names;
+            for (const SlotSpec& s : specs) names.push_back(s.name);
+            diags_.error(b.slot_loc, pd.name, field,
+                         "unknown " + std::string(is_input ? "input" : "output") + " slot '" +
+                             b.slot + "' of pass type '" + pd.type + "' (it has " +
+                             (names.empty() ? std::string("none") : quoted_list(names)) + ")",
+                         did_you_mean(b.slot, names));
+          }
+          continue;
+        }
+        const int index = resource_index(b.resource);
+        if (index < 0) {
+          diags_.error(b.loc, pd.name, field, "unknown resource '" + b.resource + "'",
+                       did_you_mean(b.resource, resource_names()));
+          continue;
+        }
+        if (!resource_ok_[static_cast<size_t>(index)]) continue;  // already reported
+        const ResourceInfo& info = graph_.resources[static_cast<size_t>(index)].info;
+        if (!(spec->kinds & static_cast<uint32_t>(info.kind))) {
+          diags_.error(b.loc, pd.name, field,
+                       "resource '" + b.resource + "' is a " + kind_name(info.kind) +
+                           ", but the slot accepts " + kinds_text(spec->kinds));
+          continue;
+        }
+        if (!spec->formats.empty() && std::find(spec->formats.begin(), spec->formats.end(),
+                                                info.format) == spec->formats.end()) {
+          std::vector<std::string> accepted;
+          for (VkFormat f : spec->formats) accepted.push_back(format_name(f));
+          diags_.error(b.loc, pd.name, field,
+                       "resource '" + b.resource + "' has format " + format_name(info.format) +
+                           ", but the slot accepts " + quoted_list(accepted));
+          continue;
+        }
+        if (b.mip >= 0) {
+          if (info.kind == ResourceKind::Buffer) {
+            diags_.error(b.loc, pd.name, field,
+                         "'@" + std::to_string(b.mip) + "' selects a mip level, but '" +
+                             b.resource + "' is a buffer");
+            continue;
+          }
+          if (static_cast<uint32_t>(b.mip) >= info.mip_levels) {
+            diags_.error(b.loc, pd.name, field,
+                         "mip " + std::to_string(b.mip) + " is out of range: resource '" +
+                             b.resource + "' has " + std::to_string(info.mip_levels) +
+                             " mip level(s) (0.." + std::to_string(info.mip_levels - 1) + ")");
+            continue;
+          }
+        }
+        SlotBinding sb;
+        sb.slot = b.slot;
+        sb.is_input = is_input;
+        sb.spec = spec;
+        sb.resource = index;
+        sb.info = info;
+        sb.info.mip = b.mip;
+        sb.state = state_for(spec->access, spec->stages, info.kind, info.format);
+        sb.loc = b.loc;
+        check_layout_conflicts(w, sb, field);
+        w.bindings.push_back(std::move(sb));
+      }
+      for (const SlotSpec& s : specs) {
+        if (!s.optional && !mentioned.count(s.name)) {
+          diags_.error(pd.loc, pd.name, section + "." + s.name,
+                       "missing required " + std::string(is_input ? "input" : "output") +
+                           " slot '" + s.name + "'" + (s.doc.empty() ? "" : " (" + s.doc + ")"));
+        }
+      }
+    }
+  }
+
+  // One pass may bind a resource to several slots only where the layouts agree.
+  void check_layout_conflicts(const PassWork& w, const SlotBinding& b, const std::string& field) {
+    for (const SlotBinding& other : w.bindings) {
+      if (other.resource != b.resource || other.info.kind == ResourceKind::Buffer) continue;
+      const bool overlap = other.info.mip < 0 || b.info.mip < 0 || other.info.mip == b.info.mip;
+      if (overlap && other.state.layout != b.state.layout) {
+        diags_.error(b.loc, w.desc->name, field,
+                     "resource '" + b.info.name + "' is also bound to slot '" + other.slot +
+                         "' as " + access_name(other.spec->access) +
+                         "; one pass cannot use the same " + "mip as " +
+                         access_name(b.spec->access) + " too (bind different mips with '@N')");
+      }
+    }
+  }
+
+  void resolve_when(PassWork& w) {
+    const PassDesc& pd = *w.desc;
+    if (pd.when.empty()) return;
+    ExpressionEnv env;
+    env.params = graph_.parameters;
+    env.identifiers = options_.scene_features;
+    env.identifier_kind = "scene feature";
+    ExprField f{true, false, 0.0, pd.when, pd.when_loc};
+    if (pd.when == "true" || pd.when == "false") f.loc.column -= 1;  // a JSON boolean, no quote
+    const std::optional<double> value = evaluate(f, pd.name, "when", env);
+    if (value && *value == 0.0) w.culled = "when '" + pd.when + "' is false for this scene";
+  }
+
+  void apply_pass_overrides() {
+    for (const auto& [key, text] : options_.overrides) {
+      if (graph_.parameters.count(key)) continue;
+      bool matched = false;
+      for (PassWork& w : work_) {
+        const std::string& name = w.desc->name;
+        if (!w.info || key.size() <= name.size() + 1 || key.compare(0, name.size(), name) != 0 ||
+            key[name.size()] != '.') {
+          continue;
+        }
+        const ParamSpec* spec = find_param(*w.info, key.substr(name.size() + 1));
+        if (!spec) continue;
+        matched = true;
+        try {
+          w.params[spec->name] = parse_param_value(*spec, key, text);
+        } catch (const GraphError& e) {
+          for (const Diagnostic& d : e.diagnostics()) {
+            diags_.error(override_loc(key, text), name, key, d.message, d.hint);
+          }
+        }
+      }
+      if (!matched) {
+        std::vector<std::string> candidates;
+        for (const auto& [param, value] : graph_.parameters) candidates.push_back(param);
+        for (const PassWork& w : work_) {
+          if (!w.info) continue;
+          for (const ParamSpec& spec : w.info->params) {
+            candidates.push_back(w.desc->name + "." + spec.name);
+          }
+        }
+        diags_.error(
+            override_loc(key, text), {}, key,
+            "unknown --set key '" + key + "' (expected a graph parameter or 'pass.parameter')",
+            did_you_mean(key, candidates));
+      }
+    }
+  }
+
+  // ---- whole-graph checks ---------------------------------------------------------------
+  void check_outputs_declared() {
+    for (const OutputDesc& o : desc_.outputs) {
+      if (resource_index(o.resource) < 0) {
+        diags_.error(o.loc, {}, "outputs." + o.name, "unknown output resource '" + o.resource + "'",
+                     did_you_mean(o.resource, resource_names()));
+      }
+    }
+  }
+
+  std::vector<size_t> writers_of(int resource, const std::vector<bool>* live = nullptr) const {
+    std::vector<size_t> writers;
+    for (size_t i = 0; i < work_.size(); ++i) {
+      if (!work_[i].usable || (live && !(*live)[i])) continue;
+      for (const SlotBinding& b : work_[i].bindings) {
+        if (b.resource == resource && binding_writes(b)) {
+          writers.push_back(i);
+          break;
+        }
+      }
+    }
+    return writers;
+  }
+
+  void check_reads_have_writers() {
+    for (const PassWork& w : work_) {
+      for (const SlotBinding& b : w.bindings) {
+        if (!binding_reads(b) || !b.is_input) continue;
+        const CompiledResource& r = graph_.resources[static_cast<size_t>(b.resource)];
+        if (r.info.persistent) continue;
+        // Counted from the file, so that a mistake in a writer's binding is reported once,
+        // not again as a missing write.
+        bool written = false;
+        for (const PassDesc& other : desc_.passes) {
+          for (const BindingDesc& ob : other.outputs)
+            written = written || ob.resource == r.info.name;
+        }
+        if (!written) {
+          diags_.error(b.loc, w.desc->name, "in." + b.slot,
+                       "resource '" + r.info.name +
+                           "' is read before any write: no pass writes it (mark it \"persistent\": "
+                           "true if it carries data from earlier frames)");
+        }
+      }
+    }
+  }
+
+  struct Dependencies {
+    std::vector<std::set<size_t>> order;  // must run after (all hazards)
+    std::vector<std::set<size_t>> data;   // takes data from (for culling)
+  };
+
+  // Dependencies among the passes in `live`, decided by file order (see the graph docs):
+  // a reader takes the last earlier write; a transient read with no earlier writer takes the
+  // frame's final version; a persistent one the previous frame's.
+  Dependencies dependencies(const std::vector<bool>& live) const {
+    Dependencies deps;
+    deps.order.resize(work_.size());
+    deps.data.resize(work_.size());
+    for (size_t r = 0; r < graph_.resources.size(); ++r) {
+      struct Use {
+        size_t pass;
+        bool reads, writes;
+      };
+      std::vector<Use> uses;
+      for (size_t i = 0; i < work_.size(); ++i) {
+        if (!live[i]) continue;
+        Use u{i, false, false};
+        for (const SlotBinding& b : work_[i].bindings) {
+          if (b.resource != static_cast<int>(r)) continue;
+          u.reads = u.reads || binding_reads(b);
+          u.writes = u.writes || binding_writes(b);
+        }
+        if (u.reads || u.writes) uses.push_back(u);
+      }
+      std::optional<size_t> final_writer;
+      for (const Use& u : uses) {
+        if (u.writes) final_writer = u.pass;
+      }
+      const bool persistent = graph_.resources[r].info.persistent;
+      std::optional<size_t> last_writer;
+      std::vector<size_t> readers;
+      for (const Use& u : uses) {
+        if (u.reads) {
+          if (last_writer) {
+            deps.order[u.pass].insert(*last_writer);
+            deps.data[u.pass].insert(*last_writer);
+            readers.push_back(u.pass);
+          } else if (final_writer && *final_writer != u.pass && !persistent && !u.writes) {
+            deps.order[u.pass].insert(*final_writer);
+            deps.data[u.pass].insert(*final_writer);
+          } else {
+            // Previous frame's contents: the final writer feeds it, one frame later.
+            if (final_writer && *final_writer != u.pass) deps.data[u.pass].insert(*final_writer);
+            readers.push_back(u.pass);
+          }
+        }
+        if (u.writes) {
+          if (last_writer) {
+            deps.order[u.pass].insert(*last_writer);
+            deps.data[u.pass].insert(*last_writer);
+          }
+          for (size_t reader : readers) {
+            if (reader != u.pass) deps.order[u.pass].insert(reader);
+          }
+          readers.clear();
+          last_writer = u.pass;
+        }
+      }
+    }
+    return deps;
+  }
+
+  // Kahn's algorithm, ties broken by file order. Returns the passes left over on a cycle.
+  std::vector<size_t> topological_order(const std::vector<bool>& live, const Dependencies& deps,
+                                        std::vector<size_t>& leftover) const {
+    std::vector<size_t> pending(work_.size(), 0);
+    std::vector<std::vector<size_t>> dependents(work_.size());
+    std::priority_queue<size_t, std::vector<size_t>, std::greater<>> ready;
+    for (size_t i = 0; i < work_.size(); ++i) {
+      if (!live[i]) continue;
+      pending[i] = deps.order[i].size();
+      for (size_t d : deps.order[i]) dependents[d].push_back(i);
+      if (pending[i] == 0) ready.push(i);
+    }
+    std::vector<size_t> order;
+    while (!ready.empty()) {
+      const size_t i = ready.top();
+      ready.pop();
+      order.push_back(i);
+      for (size_t next : dependents[i]) {
+        if (--pending[next] == 0) ready.push(next);
+      }
+    }
+    leftover.clear();
+    for (size_t i = 0; i < work_.size(); ++i) {
+      if (live[i] && pending[i] > 0) leftover.push_back(i);
+    }
+    return order;
+  }
+
+  void check_cycles() {
+    std::vector<bool> usable(work_.size());
+    for (size_t i = 0; i < work_.size(); ++i) usable[i] = work_[i].usable;
+    const Dependencies deps = dependencies(usable);
+    std::vector<size_t> leftover;
+    topological_order(usable, deps, leftover);
+    if (leftover.empty()) return;
+    // Walk dependencies inside the leftover set from its first pass until one repeats.
+    std::set<size_t> left(leftover.begin(), leftover.end());
+    std::vector<size_t> path{leftover.front()};
+    while (true) {
+      size_t next = 0;
+      for (size_t d : deps.order[path.back()]) {
+        if (left.count(d)) {
+          next = d;
+          break;
+        }
+      }
+      auto seen = std::find(path.begin(), path.end(), next);
+      if (seen != path.end()) {
+        path.erase(path.begin(), seen);
+        path.push_back(next);
+        break;
+      }
+      path.push_back(next);
+    }
+    // path: a → b means a must run after b; print in execution direction.
+    std::reverse(path.begin(), path.end());
+    std::string text;
+    for (size_t i : path) text += (text.empty() ? "'" : " -> '") + work_[i].desc->name + "'";
+    const PassDesc& first = *work_[path.front()].desc;
+    diags_.error(first.loc, first.name, {}, "dependency cycle between passes: " + text);
+  }
+
+  // ---- culling --------------------------------------------------------------------------
+  void cull() {
+    std::vector<bool> live(work_.size());
+    for (size_t i = 0; i < work_.size(); ++i) live[i] = work_[i].usable && work_[i].culled.empty();
+    // Inputs whose every writer is culled: required ones cull the reader, optional ones unbind.
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (size_t i = 0; i < work_.size(); ++i) {
+        if (!live[i]) continue;
+        for (SlotBinding& b : work_[i].bindings) {
+          if (!b.is_input || b.resource < 0) continue;
+          std::vector<size_t> all = writers_of(b.resource);
+          all.erase(std::remove(all.begin(), all.end(), i), all.end());
+          if (all.empty()) continue;
+          if (std::any_of(all.begin(), all.end(), [&](size_t j) { return live[j]; })) continue;
+          if (b.spec->optional) {
+            b.resource = -1;
+            continue;
+          }
+          std::vector<std::string> names;
+          for (size_t j : all) names.push_back(work_[j].desc->name);
+          work_[i].culled = "input '" + b.slot + "' is only written by culled pass" +
+                            (names.size() > 1 ? "es " : " ") + quoted_list(names);
+          live[i] = false;
+          changed = true;
+          break;
+        }
+      }
+    }
+    // Keep what an output needs.
+    const Dependencies deps = dependencies(live);
+    std::vector<bool> needed(work_.size(), false);
+    std::vector<size_t> stack;
+    for (const OutputDesc& o : desc_.outputs) {
+      for (size_t j : writers_of(resource_index(o.resource), &live)) stack.push_back(j);
+    }
+    while (!stack.empty()) {
+      const size_t i = stack.back();
+      stack.pop_back();
+      if (needed[i]) continue;
+      needed[i] = true;
+      for (size_t d : deps.data[i]) stack.push_back(d);
+    }
+    for (size_t i = 0; i < work_.size(); ++i) {
+      if (live[i] && !needed[i]) {
+        work_[i].culled = "no output depends on it";
+        live[i] = false;
+      }
+    }
+    live_ = live;
+    for (size_t i = 0; i < work_.size(); ++i) {
+      if (!work_[i].usable || live[i]) continue;
+      const PassDesc& pd = *work_[i].desc;
+      graph_.culled.push_back(CulledPass{pd.name, pd.type, i, pd.loc, work_[i].culled});
+    }
+  }
+
+  void check_outputs_written() {
+    for (const OutputDesc& o : desc_.outputs) {
+      const int r = resource_index(o.resource);
+      graph_.outputs[o.name] = r;
+      graph_.resources[static_cast<size_t>(r)].is_output = true;
+      if (!writers_of(r, &live_).empty()) continue;
+      const std::vector<size_t> all = writers_of(r);
+      if (all.empty()) {
+        diags_.error(o.loc, {}, "outputs." + o.name,
+                     "output resource '" + o.resource + "' is never written by any pass");
+        continue;
+      }
+      std::string why;
+      for (size_t j : all) {
+        why +=
+            (why.empty() ? "" : "; ") + ("pass '" + work_[j].desc->name + "': " + work_[j].culled);
+      }
+      diags_.error(o.loc, {}, "outputs." + o.name,
+                   "output resource '" + o.resource +
+                       "' has no writer left: every pass writing it was culled (" + why + ")");
+    }
+  }
+
+  void schedule() {
+    const Dependencies deps = dependencies(live_);
+    std::vector<size_t> leftover;
+    const std::vector<size_t> order = topological_order(live_, deps, leftover);
+    std::map<size_t, size_t> schedule_index;
+    for (size_t s = 0; s < order.size(); ++s) schedule_index[order[s]] = s;
+    for (size_t s = 0; s < order.size(); ++s) {
+      PassWork& w = work_[order[s]];
+      CompiledPass p;
+      p.name = w.desc->name;
+      p.type = w.desc->type;
+      p.type_info = w.info;
+      p.file_index = order[s];
+      p.loc = w.desc->loc;
+      p.params = std::move(w.params);
+      p.bindings = std::move(w.bindings);
+      for (size_t d : deps.order[order[s]]) p.depends_on.push_back(schedule_index.at(d));
+      std::sort(p.depends_on.begin(), p.depends_on.end());
+      graph_.passes.push_back(std::move(p));
+    }
+  }
+
+  const GraphDesc& desc_;
+  const Registry& registry_;
+  const CompileOptions& options_;
+  DiagnosticList diags_;
+  CompiledGraph graph_;
+  std::vector<bool> resource_ok_;
+  std::vector<PassWork> work_;
+  std::vector<bool> live_;
+};
+
+}  // namespace
+
+CompiledGraph compile(const GraphDesc& desc, const Registry& registry,
+                      const CompileOptions& options) {
+  return Compiler(desc, registry, options).run();
+}
+
+}  // namespace voxgi::graph

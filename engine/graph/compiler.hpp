@@ -1,0 +1,160 @@
+#pragma once
+// Graph description → compiled graph: validated, culled, ordered, with resource lifetimes,
+// shared physical resources, layouts and barriers. Pure CPU work; nothing touches a device.
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/graph/diagnostics.hpp"
+#include "engine/graph/graph_desc.hpp"
+#include "engine/graph/pass.hpp"
+
+namespace voxgi::graph {
+
+struct CompileOptions {
+  uint32_t viewport_width = 1280;
+  uint32_t viewport_height = 720;
+  std::map<std::string, double> scene_features;  // "scene.has_emissive" → 1
+  std::map<std::string, std::string> overrides;  // --set key=value
+  bool full_barriers = false;    // a full memory barrier before every pass (rules out sync bugs)
+  bool alias_transients = true;  // let same-description transients with disjoint lives share
+};
+
+// Where a resource (or some of its mips) is, as far as synchronisation goes.
+struct ResourceState {
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkPipelineStageFlags2 stages = VK_PIPELINE_STAGE_2_NONE;
+  VkAccessFlags2 access = VK_ACCESS_2_NONE;
+};
+
+// One image or buffer barrier, in the shape of VkImageMemoryBarrier2 / VkBufferMemoryBarrier2.
+// resource == -1 with is_global: a VkMemoryBarrier2 (full_barriers mode).
+struct Barrier {
+  int resource = -1;  // index into CompiledGraph::resources
+  bool is_buffer = false;
+  bool is_global = false;
+  uint32_t base_mip = 0;
+  uint32_t mip_count = 1;
+  VkPipelineStageFlags2 src_stages = VK_PIPELINE_STAGE_2_NONE;
+  VkAccessFlags2 src_access = VK_ACCESS_2_NONE;
+  VkPipelineStageFlags2 dst_stages = VK_PIPELINE_STAGE_2_NONE;
+  VkAccessFlags2 dst_access = VK_ACCESS_2_NONE;
+  VkImageLayout old_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkImageLayout new_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+};
+
+struct SlotBinding {
+  std::string slot;
+  bool is_input = true;
+  const SlotSpec* spec = nullptr;
+  int resource = -1;    // -1: an optional slot left unbound
+  ResourceInfo info;    // the resource as the slot sees it (mip set for "@N")
+  ResourceState state;  // layout, stages and access the pass needs
+  SourceLoc loc;
+};
+
+struct CompiledPass {
+  std::string name;
+  std::string type;
+  const PassTypeInfo* type_info = nullptr;
+  size_t file_index = 0;  // position in the graph file
+  SourceLoc loc;
+  std::map<std::string, ParamValue> params;  // every declared parameter, resolved
+  std::vector<SlotBinding> bindings;         // inputs then outputs, in declaration order
+  std::vector<Barrier> barriers;             // recorded before the pass
+  std::vector<size_t> depends_on;            // schedule indices of passes it must follow
+
+  const SlotBinding* binding(std::string_view slot) const;
+};
+
+struct CulledPass {
+  std::string name;
+  std::string type;
+  size_t file_index = 0;
+  SourceLoc loc;
+  std::string reason;
+};
+
+struct CompiledResource {
+  ResourceInfo info;  // whole resource (mip == -1)
+  SourceLoc loc;
+  VkImageUsageFlags image_usage = 0;
+  VkBufferUsageFlags buffer_usage = 0;
+  int physical = -1;    // index into CompiledGraph::physical; -1 when no live pass uses it
+  int first_pass = -1;  // schedule indices of the first and last live pass touching it
+  int last_pass = -1;
+  uint64_t bytes = 0;  // estimated
+  bool is_output = false;
+  // Carried between frames (persistent, or read-modify-written before any plain write).
+  bool carries_contents = false;
+  // State per mip (one entry for buffers) at the end of a frame, after output transitions.
+  std::vector<ResourceState> end_state;
+};
+
+// One allocation; several transient resources may share it.
+struct PhysicalResource {
+  ResourceInfo info;  // description (the first sharer's name)
+  VkImageUsageFlags image_usage = 0;
+  VkBufferUsageFlags buffer_usage = 0;
+  std::vector<int> resources;  // the logical resources living in it, by first use
+  uint64_t bytes = 0;
+  bool carries_contents = false;
+};
+
+struct CompiledGraph {
+  std::string file;
+  std::string name;
+  uint32_t viewport_width = 0;
+  uint32_t viewport_height = 0;
+  bool full_barriers = false;
+  std::map<std::string, double> parameters;  // graph parameters after overrides
+  std::vector<CompiledPass> passes;          // live, in execution order
+  std::vector<CulledPass> culled;            // in file order
+  std::vector<CompiledResource> resources;   // in file order
+  std::vector<PhysicalResource> physical;
+  // Carried resources: from their end-of-frame state to the state of their first use.
+  std::vector<Barrier> frame_start;
+  // Outputs to TRANSFER_SRC at the end of the frame so they can be read back.
+  std::vector<Barrier> frame_end;
+  std::map<std::string, int> outputs;  // output name → resource index
+  uint64_t total_bytes = 0;            // physical allocations
+  uint64_t total_bytes_unshared = 0;   // if nothing shared
+
+  int find_resource(std::string_view name) const;
+  const CompiledPass* find_pass(std::string_view name) const;
+  const CulledPass* find_culled(std::string_view name) const;
+};
+
+// Throws GraphError listing every problem found, each once.
+CompiledGraph compile(const GraphDesc& desc, const Registry& registry,
+                      const CompileOptions& options);
+
+// Format names ("rgba16f") ↔ VkFormat; bytes per texel.
+VkFormat format_from_name(std::string_view name);  // VK_FORMAT_UNDEFINED when unknown
+std::string format_name(VkFormat format);
+std::vector<std::string> format_names();
+uint32_t format_texel_bytes(VkFormat format);
+bool is_depth_format(VkFormat format);
+
+std::string kind_name(ResourceKind kind);
+std::string access_name(Access access);
+bool access_writes(Access access);
+bool access_reads(Access access);
+
+// The state a slot's access needs: layout, stages and access flags.
+ResourceState state_for(Access access, uint32_t stages, ResourceKind kind, VkFormat format);
+
+// A parameter value given as text (--set, the viewer) checked against its spec.
+// Throws GraphError naming `key`.
+ParamValue parse_param_value(const ParamSpec& spec, const std::string& key,
+                             const std::string& text);
+// The same for a number (Bool: non-zero is true; Enum: a choice index). Throws GraphError.
+ParamValue param_from_number(const ParamSpec& spec, const std::string& key, double number);
+// Shortest readable text of a number ("0.2", "1024").
+std::string format_number(double v);
+
+}  // namespace voxgi::graph

@@ -1,0 +1,102 @@
+#pragma once
+// A graph file as written: parsed but not validated. Every field keeps its source location so
+// that the compiler can point at it.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/graph/diagnostics.hpp"
+#include "engine/graph/json.hpp"
+
+namespace voxgi::graph {
+
+// A field that is a number or an expression string ("viewport/2", "${voxel.resolution}").
+struct ExprField {
+  bool present = false;
+  bool is_number = false;
+  double number = 0.0;
+  std::string text;  // the expression, or the number as written out
+  SourceLoc loc;
+};
+
+struct ResourceDesc {
+  std::string name;
+  SourceLoc loc;     // of the name
+  std::string type;  // "image2d", "image3d", "clipmap", "buffer"
+  SourceLoc type_loc;
+  std::string format;
+  SourceLoc format_loc;
+  std::vector<ExprField> size;  // 1 (square / cube / bytes) to 3 components; empty when absent
+  SourceLoc size_loc;
+  ExprField mips;  // text "full" for a full chain
+  ExprField layers;
+  ExprField resolution;  // clipmap
+  ExprField levels;      // clipmap
+  bool persistent = false;
+  std::string doc;
+};
+
+// "slot": "resource" or "slot": "resource@mip".
+struct BindingDesc {
+  std::string slot;
+  SourceLoc slot_loc;
+  std::string resource;
+  int mip = -1;
+  SourceLoc loc;  // of the value
+};
+
+struct ParamSetting {
+  std::string name;
+  SourceLoc name_loc;
+  json::Value value;
+};
+
+struct PassDesc {
+  std::string name;
+  SourceLoc loc;  // of the pass object
+  SourceLoc name_loc;
+  std::string type;
+  SourceLoc type_loc;
+  std::string when;  // empty: always
+  SourceLoc when_loc;
+  std::vector<ParamSetting> params;
+  std::vector<BindingDesc> inputs;
+  std::vector<BindingDesc> outputs;
+  std::string doc;
+};
+
+struct GraphParam {
+  std::string name;
+  SourceLoc loc;
+  double value = 0.0;
+  bool is_bool = false;
+};
+
+struct OutputDesc {
+  std::string name;  // "display", "linear", ...
+  std::string resource;
+  SourceLoc loc;
+};
+
+struct GraphDesc {
+  std::string file;
+  std::string name;
+  std::string doc;
+  std::vector<GraphParam> parameters;
+  std::vector<ResourceDesc> resources;
+  std::vector<PassDesc> passes;  // in file order
+  std::vector<OutputDesc> outputs;
+
+  const ResourceDesc* find_resource(std::string_view name) const;
+  // The pass families named by pass types "family.pass", sorted, each once.
+  std::vector<std::string> families() const;
+};
+
+// Throw GraphError listing every structural problem found (wrong JSON kinds, unknown keys,
+// missing names); semantic checks are the compiler's.
+GraphDesc parse_graph(std::string_view text, std::string file_name);
+GraphDesc load_graph_file(const std::filesystem::path& path);
+
+}  // namespace voxgi::graph

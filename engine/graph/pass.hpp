@@ -1,0 +1,204 @@
+#pragma once
+// The contract between the render graph and pass plugins.
+//
+// A pass type is a C++ class registered under a name ("family.pass") together with a
+// PassTypeInfo that declares its inputs, outputs and parameters. The graph compiler only
+// ever looks at PassTypeInfo; the executor creates Pass objects through the registry and
+// hands them a PassContext. Passes never create graph resources and never write barriers
+// for graph resources: what they declare is what the graph synchronises.
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/graph/frame.hpp"
+
+namespace voxgi::gpu {
+class Context;
+class Image;
+class Buffer;
+class ShaderCompiler;
+}  // namespace voxgi::gpu
+
+namespace voxgi::scene {
+struct Scene;
+class GpuScene;
+}  // namespace voxgi::scene
+
+namespace voxgi::graph {
+
+// Bumped whenever PassTypeInfo, Pass, PassContext or Registry change layout or meaning.
+inline constexpr uint32_t kPluginAbiVersion = 1;
+
+enum class ParamType { Bool, Int, Float, Enum };
+
+struct ParamSpec {
+  std::string name;
+  ParamType type = ParamType::Float;
+  double default_value = 0.0;  // Enum: index into choices
+  double min = 0.0;            // inclusive range for Int and Float
+  double max = 0.0;
+  std::vector<std::string> choices;  // Enum only
+  std::string doc;
+  // false: a change re-runs the pass's setup() (e.g. it changes a shader define).
+  bool live = true;
+};
+
+struct ParamValue {
+  double number = 0.0;  // Bool: 0/1, Int, Float, Enum: index
+  std::string text;     // Enum: the choice's name
+};
+
+enum class ResourceKind : uint32_t { Image2D = 1, Image3D = 2, Clipmap = 4, Buffer = 8 };
+using ResourceKinds = uint32_t;
+constexpr ResourceKinds kinds(ResourceKind k) { return static_cast<uint32_t>(k); }
+constexpr ResourceKinds operator|(ResourceKind a, ResourceKind b) {
+  return static_cast<uint32_t>(a) | static_cast<uint32_t>(b);
+}
+
+// How a pass touches a resource bound to a slot. Inputs use read accesses, outputs write ones.
+enum class Access {
+  Sampled,           // image read through a sampler (depth images: also comparison samplers)
+  StorageRead,       // storage image or storage buffer, read only
+  StorageWrite,      // storage image or storage buffer, fully overwritten
+  StorageReadWrite,  // storage image or buffer, read-modify-write (keeps previous contents)
+  ColorAttachment,   // render target, cleared or overwritten
+  DepthAttachment,   // depth render target, written and tested
+  UniformRead,       // uniform buffer
+  TransferRead,
+  TransferWrite,
+};
+
+// Shader stages a slot is used in (bit mask).
+enum Stage : uint32_t {
+  kStageVertex = 1,
+  kStageGeometry = 2,
+  kStageFragment = 4,
+  kStageCompute = 8,
+  kStageTransfer = 16,
+};
+
+struct SlotSpec {
+  std::string name;
+  ResourceKinds kinds = 0;
+  Access access = Access::Sampled;
+  uint32_t stages = kStageFragment;
+  std::vector<VkFormat> formats;  // empty: any format
+  bool optional = false;
+  std::string doc;
+};
+
+struct PassTypeInfo {
+  std::string type;  // "family.pass"
+  std::string doc;
+  std::vector<SlotSpec> inputs;
+  std::vector<SlotSpec> outputs;
+  std::vector<ParamSpec> params;
+};
+
+// What a slot is bound to, as compiled: sizes are resolved.
+struct ResourceInfo {
+  std::string name;  // the graph resource's name
+  ResourceKind kind = ResourceKind::Image2D;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent3D extent{0, 0, 0};  // clipmap: (R, R, R * levels), levels stacked along z
+  uint32_t mip_levels = 1;
+  uint32_t array_layers = 1;
+  uint32_t clipmap_levels = 0;  // clipmap only
+  VkDeviceSize buffer_size = 0;  // buffer only
+  int mip = -1;                  // the single mip the slot touches, -1 for all
+  bool persistent = false;
+};
+
+// The live resource behind a slot during execute().
+struct BoundResource {
+  const ResourceInfo* info = nullptr;
+  gpu::Image* image = nullptr;    // images and clipmaps
+  gpu::Buffer* buffer = nullptr;  // buffers
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // the layout the graph put it in
+  VkImageView view = VK_NULL_HANDLE;  // whole image, or the single mip of info->mip
+};
+
+class PassContextImpl;
+
+// Everything a pass may use. Valid during setup() and execute(); cmd() and resource() only
+// during execute().
+class PassContext {
+ public:
+  explicit PassContext(PassContextImpl& impl) : impl_(impl) {}
+
+  gpu::Context& gpu() const;
+  gpu::ShaderCompiler& shaders() const;
+  const scene::Scene& scene() const;
+  scene::GpuScene& gpu_scene() const;
+  const FrameInfo& frame() const;
+  const std::string& pass_name() const;
+
+  bool has(std::string_view slot) const;  // false for an unbound optional slot
+  const ResourceInfo& info(std::string_view slot) const;
+  const BoundResource& resource(std::string_view slot) const;
+
+  double number(std::string_view param) const;
+  int integer(std::string_view param) const { return static_cast<int>(number(param)); }
+  bool flag(std::string_view param) const { return number(param) != 0.0; }
+  const std::string& choice(std::string_view param) const;
+  // True when a parameter of this pass changed since the previous execute().
+  bool params_changed() const;
+
+  VkCommandBuffer cmd() const;
+  // A barrier between two of this pass's own dispatches or draws on a resource it owns for the
+  // pass (e.g. building a mip chain level by level). Graph-level barriers are not the pass's job.
+  void barrier_within_pass(std::string_view slot, int src_mip = -1, int dst_mip = -1) const;
+
+ private:
+  PassContextImpl& impl_;
+};
+
+class Pass {
+ public:
+  virtual ~Pass() = default;
+  // Create pipelines; runs after each compile and after a non-live parameter change.
+  virtual void setup(PassContext& ctx) { (void)ctx; }
+  // Record commands into ctx.cmd().
+  virtual void execute(PassContext& ctx) = 0;
+  // Non-empty: this frame can skip the pass (its outputs are persistent and its inputs did not
+  // change); the reason is reported by timings and `graph explain`.
+  virtual std::string skip_reason(const PassContext& ctx) const {
+    (void)ctx;
+    return {};
+  }
+};
+
+using PassFactory = std::function<std::unique_ptr<Pass>()>;
+
+class Registry {
+ public:
+  // Throws std::invalid_argument when the type is already registered.
+  void add(PassTypeInfo info, PassFactory factory);
+  const PassTypeInfo* find(std::string_view type) const;
+  std::unique_ptr<Pass> create(std::string_view type) const;
+  std::vector<const PassTypeInfo*> all() const;  // sorted by type name
+
+ private:
+  struct Entry {
+    PassTypeInfo info;
+    PassFactory factory;
+  };
+  std::vector<Entry> entries_;
+};
+
+}  // namespace voxgi::graph
+
+// Every pass family library exports these two C functions.
+//   voxgi_plugin_abi_version() returns kPluginAbiVersion of the headers it was built with;
+//   voxgi_plugin_register() adds the family's pass types.
+extern "C" {
+using VoxgiPluginAbiVersionFn = uint32_t (*)();
+using VoxgiPluginRegisterFn = void (*)(voxgi::graph::Registry&);
+}
+#define VOXGI_PLUGIN_EXPORT extern "C" __attribute__((visibility("default")))

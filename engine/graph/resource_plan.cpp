@@ -1,0 +1,348 @@
+#include "engine/graph/resource_plan.hpp"
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <utility>
+
+namespace voxgi::graph {
+
+uint64_t estimate_bytes(const ResourceInfo& info) {
+  if (info.kind == ResourceKind::Buffer) return info.buffer_size;
+  uint64_t texels = 0;
+  for (uint32_t m = 0; m < info.mip_levels; ++m) {
+    texels += uint64_t{std::max(1u, info.extent.width >> m)} *
+              std::max(1u, info.extent.height >> m) * std::max(1u, info.extent.depth >> m);
+  }
+  return texels * format_texel_bytes(info.format) * info.array_layers;
+}
+
+VkImageUsageFlags image_usage_for(Access access) {
+  switch (access) {
+    case Access::Sampled:
+      return VK_IMAGE_USAGE_SAMPLED_BIT;
+    case Access::StorageRead:
+    case Access::StorageWrite:
+    case Access::StorageReadWrite:
+      return VK_IMAGE_USAGE_STORAGE_BIT;
+    case Access::ColorAttachment:
+      return VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    case Access::DepthAttachment:
+      return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+    case Access::UniformRead:
+      return 0;
+    case Access::TransferRead:
+      return VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    case Access::TransferWrite:
+      return VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  }
+  return 0;
+}
+
+VkBufferUsageFlags buffer_usage_for(Access access) {
+  switch (access) {
+    case Access::UniformRead:
+      return VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+    case Access::TransferRead:
+      return VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    case Access::TransferWrite:
+      return VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    default:
+      return VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  }
+}
+
+namespace {
+
+constexpr VkAccessFlags2 kWriteAccess =
+    VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+
+// What the synchronisation so far guarantees for one mip of one physical resource.
+struct Track {
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkPipelineStageFlags2 write_stages = 0;  // last write (or layout transition)
+  VkAccessFlags2 write_access = 0;
+  VkPipelineStageFlags2 read_stages = 0;                                  // reads since then
+  std::vector<std::pair<VkPipelineStageFlags2, VkAccessFlags2>> visible;  // where it is visible
+};
+
+struct Need {
+  ResourceState state;
+  bool reads = false;
+  bool writes = false;
+};
+
+bool covered(const Track& t, const ResourceState& s) {
+  return std::any_of(t.visible.begin(), t.visible.end(), [&](const auto& v) {
+    return (s.stages & ~v.first) == 0 && (s.access & ~v.second) == 0;
+  });
+}
+
+// The barrier (if any) taking `t` to `need`, and the track afterwards.
+std::optional<Barrier> transition(Track& t, const Need& need, bool discard, bool is_buffer) {
+  const ResourceState& s = need.state;
+  const bool layout_change = !is_buffer && (discard || s.layout != t.layout);
+  std::optional<Barrier> barrier;
+  auto make = [&](VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access) {
+    Barrier b;
+    b.is_buffer = is_buffer;
+    b.src_stages = src_stages;
+    b.src_access = src_access;
+    b.dst_stages = s.stages;
+    b.dst_access = s.access;
+    b.old_layout =
+        is_buffer ? VK_IMAGE_LAYOUT_UNDEFINED : (discard ? VK_IMAGE_LAYOUT_UNDEFINED : t.layout);
+    b.new_layout = is_buffer ? VK_IMAGE_LAYOUT_UNDEFINED : s.layout;
+    barrier = b;
+  };
+  const VkPipelineStageFlags2 before = t.write_stages | t.read_stages;
+  if (layout_change || need.writes) {
+    if (layout_change || before != 0) make(before, t.write_access);
+    if (need.writes) {
+      t.write_stages = s.stages;
+      t.write_access = s.access & kWriteAccess;
+      t.read_stages = need.reads ? s.stages : 0;
+      t.visible.clear();
+      if (layout_change) t.visible.push_back({s.stages, s.access & ~kWriteAccess});
+    } else {
+      // A layout transition is a write, made visible to this access only.
+      t.write_stages = s.stages;
+      t.write_access = 0;
+      t.read_stages = s.stages;
+      t.visible = {{s.stages, s.access}};
+    }
+    t.layout = s.layout;
+    return barrier;
+  }
+  if (t.write_stages != 0 && !covered(t, s)) {
+    make(t.write_stages, t.write_access);
+    t.visible.push_back({s.stages, s.access});
+  }
+  t.read_stages |= s.stages;
+  return barrier;
+}
+
+bool same_description(const ResourceInfo& a, const ResourceInfo& b) {
+  return a.kind == b.kind && a.format == b.format && a.extent.width == b.extent.width &&
+         a.extent.height == b.extent.height && a.extent.depth == b.extent.depth &&
+         a.mip_levels == b.mip_levels && a.array_layers == b.array_layers &&
+         a.clipmap_levels == b.clipmap_levels && a.buffer_size == b.buffer_size;
+}
+
+bool mergeable(const Barrier& a, const Barrier& b) {
+  return a.resource == b.resource && a.is_buffer == b.is_buffer && a.is_global == b.is_global &&
+         a.base_mip + a.mip_count == b.base_mip && a.src_stages == b.src_stages &&
+         a.src_access == b.src_access && a.dst_stages == b.dst_stages &&
+         a.dst_access == b.dst_access && a.old_layout == b.old_layout &&
+         a.new_layout == b.new_layout;
+}
+
+void append_merged(std::vector<Barrier>& list, const Barrier& b) {
+  if (!list.empty() && mergeable(list.back(), b)) {
+    list.back().mip_count += b.mip_count;
+  } else {
+    list.push_back(b);
+  }
+}
+
+void plan_lifetimes_and_usage(CompiledGraph& g) {
+  for (size_t s = 0; s < g.passes.size(); ++s) {
+    for (const SlotBinding& b : g.passes[s].bindings) {
+      if (b.resource < 0) continue;
+      CompiledResource& r = g.resources[static_cast<size_t>(b.resource)];
+      const int index = static_cast<int>(s);
+      if (r.first_pass < 0) {
+        r.first_pass = index;
+        // Transient contents read before being written in the frame come from the last frame.
+        const bool reads = b.is_input || b.spec->access == Access::StorageReadWrite;
+        r.carries_contents = r.info.persistent || reads;
+      }
+      r.last_pass = std::max(r.last_pass, index);
+      if (r.info.kind == ResourceKind::Buffer) {
+        r.buffer_usage |= buffer_usage_for(b.spec->access);
+      } else {
+        r.image_usage |= image_usage_for(b.spec->access);
+      }
+    }
+  }
+  for (CompiledResource& r : g.resources) {
+    if (r.first_pass < 0) continue;
+    if (r.info.persistent) r.carries_contents = true;
+    if (r.info.kind == ResourceKind::Buffer) {
+      // Transfer destination: persistent buffers are cleared on creation.
+      r.buffer_usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+      if (r.is_output) r.buffer_usage |= VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    } else {
+      // Sampled so that viewers can show any image; transfer dst for clears.
+      r.image_usage |= VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+      if (r.is_output) r.image_usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    }
+    // Outputs are read back after the last pass.
+    if (r.is_output) r.last_pass = static_cast<int>(g.passes.size());
+  }
+}
+
+void plan_physical(CompiledGraph& g, bool alias_transients) {
+  std::vector<size_t> by_first_use;
+  for (size_t i = 0; i < g.resources.size(); ++i) {
+    if (g.resources[i].first_pass >= 0) by_first_use.push_back(i);
+  }
+  std::stable_sort(by_first_use.begin(), by_first_use.end(), [&](size_t a, size_t b) {
+    return g.resources[a].first_pass < g.resources[b].first_pass;
+  });
+  std::vector<int> busy_until;  // per physical: the last pass of its latest sharer
+  std::vector<bool> shareable;
+  for (size_t i : by_first_use) {
+    CompiledResource& r = g.resources[i];
+    const bool can_share = alias_transients && !r.carries_contents && !r.is_output;
+    int chosen = -1;
+    if (can_share) {
+      for (size_t p = 0; p < g.physical.size(); ++p) {
+        if (shareable[p] && busy_until[p] < r.first_pass &&
+            same_description(g.physical[p].info, r.info)) {
+          chosen = static_cast<int>(p);
+          break;
+        }
+      }
+    }
+    if (chosen < 0) {
+      PhysicalResource p;
+      p.info = r.info;
+      p.bytes = r.bytes;
+      p.carries_contents = r.carries_contents;
+      g.physical.push_back(p);
+      busy_until.push_back(-1);
+      shareable.push_back(can_share);
+      chosen = static_cast<int>(g.physical.size() - 1);
+    }
+    PhysicalResource& p = g.physical[static_cast<size_t>(chosen)];
+    p.resources.push_back(static_cast<int>(i));
+    p.image_usage |= r.image_usage;
+    p.buffer_usage |= r.buffer_usage;
+    busy_until[static_cast<size_t>(chosen)] = r.last_pass;
+    r.physical = chosen;
+  }
+  // Every sharer needs every usage of the allocation it lives in.
+  for (CompiledResource& r : g.resources) {
+    if (r.physical < 0) continue;
+    r.image_usage = g.physical[static_cast<size_t>(r.physical)].image_usage;
+    r.buffer_usage = g.physical[static_cast<size_t>(r.physical)].buffer_usage;
+  }
+  g.total_bytes = 0;
+  g.total_bytes_unshared = 0;
+  for (const PhysicalResource& p : g.physical) g.total_bytes += p.bytes;
+  for (const CompiledResource& r : g.resources) {
+    if (r.physical >= 0) g.total_bytes_unshared += r.bytes;
+  }
+}
+
+uint32_t mip_count(const ResourceInfo& info) {
+  return info.kind == ResourceKind::Buffer ? 1 : info.mip_levels;
+}
+
+// One frame through the tracks; the barriers it needs are recorded into the graph.
+void simulate_frame(CompiledGraph& g, std::vector<std::vector<Track>>& tracks) {
+  std::vector<std::vector<bool>> touched(g.resources.size());
+  for (size_t r = 0; r < g.resources.size(); ++r) {
+    touched[r].assign(mip_count(g.resources[r].info), false);
+  }
+  g.frame_start.clear();
+  g.frame_end.clear();
+  for (CompiledPass& pass : g.passes) {
+    pass.barriers.clear();
+    // Merge what this pass needs per (resource, mip).
+    std::map<std::pair<int, uint32_t>, Need> needs;
+    for (const SlotBinding& b : pass.bindings) {
+      if (b.resource < 0) continue;
+      const ResourceInfo& info = g.resources[static_cast<size_t>(b.resource)].info;
+      const uint32_t first = b.info.mip < 0 ? 0 : static_cast<uint32_t>(b.info.mip);
+      const uint32_t last = b.info.mip < 0 ? mip_count(info) : first + 1;
+      for (uint32_t m = first; m < last; ++m) {
+        Need& n = needs[{b.resource, m}];
+        n.state.layout = b.state.layout;
+        n.state.stages |= b.state.stages;
+        n.state.access |= b.state.access;
+        n.reads = n.reads || b.is_input || b.spec->access == Access::StorageReadWrite;
+        n.writes = n.writes || (!b.is_input && access_writes(b.spec->access));
+      }
+    }
+    for (const auto& [key, need] : needs) {
+      const auto [r, m] = key;
+      CompiledResource& res = g.resources[static_cast<size_t>(r)];
+      Track& t = tracks[static_cast<size_t>(res.physical)][m];
+      const bool first_use = !touched[static_cast<size_t>(r)][m];
+      touched[static_cast<size_t>(r)][m] = true;
+      const bool discard = first_use && !res.carries_contents;
+      std::optional<Barrier> b =
+          transition(t, need, discard, res.info.kind == ResourceKind::Buffer);
+      if (!b) continue;
+      b->resource = r;
+      b->base_mip = m;
+      b->mip_count = 1;
+      // A carried resource's first transition can happen as the frame starts.
+      append_merged(first_use && res.carries_contents ? g.frame_start : pass.barriers, *b);
+    }
+  }
+  for (const auto& [name, r] : g.outputs) {
+    CompiledResource& res = g.resources[static_cast<size_t>(r)];
+    if (res.physical < 0) continue;
+    const bool is_buffer = res.info.kind == ResourceKind::Buffer;
+    Need need;
+    need.state = state_for(Access::TransferRead, kStageTransfer, res.info.kind, res.info.format);
+    need.reads = true;
+    for (uint32_t m = 0; m < mip_count(res.info); ++m) {
+      Track& t = tracks[static_cast<size_t>(res.physical)][m];
+      // Outputs named twice are transitioned once.
+      if (!is_buffer && t.layout == need.state.layout && covered(t, need.state)) continue;
+      std::optional<Barrier> b = transition(t, need, false, is_buffer);
+      if (!b) continue;
+      b->resource = r;
+      b->base_mip = m;
+      append_merged(g.frame_end, *b);
+    }
+  }
+}
+
+void apply_full_barriers(CompiledGraph& g) {
+  constexpr VkAccessFlags2 kAll = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  for (CompiledPass& pass : g.passes) {
+    std::vector<Barrier> list;
+    Barrier global;
+    global.is_global = true;
+    global.src_stages = global.dst_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    global.src_access = global.dst_access = kAll;
+    list.push_back(global);
+    for (Barrier b : pass.barriers) {
+      if (b.is_buffer || b.old_layout == b.new_layout) continue;  // the global one covers it
+      b.src_stages = b.dst_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+      b.src_access = b.dst_access = kAll;
+      list.push_back(b);
+    }
+    pass.barriers = std::move(list);
+  }
+}
+
+}  // namespace
+
+void plan_resources(CompiledGraph& g, const CompileOptions& options) {
+  plan_lifetimes_and_usage(g);
+  plan_physical(g, options.alias_transients);
+  std::vector<std::vector<Track>> tracks(g.physical.size());
+  for (size_t p = 0; p < g.physical.size(); ++p) tracks[p].resize(mip_count(g.physical[p].info));
+  // The first run finds where each resource ends a frame; the second starts from there, as
+  // every frame after the first does.
+  simulate_frame(g, tracks);
+  simulate_frame(g, tracks);
+  for (CompiledResource& r : g.resources) {
+    if (r.physical < 0) continue;
+    r.end_state.clear();
+    for (const Track& t : tracks[static_cast<size_t>(r.physical)]) {
+      r.end_state.push_back(
+          ResourceState{t.layout, t.write_stages | t.read_stages, t.write_access});
+    }
+  }
+  if (options.full_barriers) apply_full_barriers(g);
+}
+
+}  // namespace voxgi::graph

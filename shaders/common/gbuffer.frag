@@ -1,0 +1,26 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "lib/common.glsl"
+#include "lib/scene.glsl"
+
+layout(location = 0) in vec3 in_normal;
+layout(location = 1) in vec4 in_tangent;
+layout(location = 2) in vec2 in_uv;
+layout(location = 3) flat in uint in_material;
+
+layout(location = 0) out vec4 out_base_color;
+layout(location = 1) out vec4 out_normal;
+layout(location = 2) out vec4 out_material;
+layout(location = 3) out vec4 out_emission;
+
+void main() {
+  // Back faces of double-sided materials are shaded with the normal facing the viewer.
+  vec3 normal = gl_FrontFacing ? in_normal : -in_normal;
+  vec4 tangent = vec4(gl_FrontFacing ? in_tangent.xyz : -in_tangent.xyz, in_tangent.w);
+  MaterialSample m = sample_material(in_material, in_uv, normal, tangent);
+  if (m.alpha_mask && m.base_color.a < m.alpha_cutoff) discard;
+  out_base_color = vec4(m.base_color.rgb, m.occlusion);
+  out_normal = vec4(m.normal, m.roughness);
+  out_material = vec4(m.metallic, m.roughness, m.occlusion, 1.0);
+  out_emission = vec4(sanitize_radiance(m.emissive), 1.0);
+}

@@ -1,0 +1,26 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "lib/frame.glsl"
+#include "lib/scene.glsl"
+
+layout(set = 0, binding = 0) uniform FrameBlock { FrameUniforms frame; };
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec4 in_tangent;
+layout(location = 3) in vec2 in_uv;
+
+layout(location = 0) out vec3 out_normal;
+layout(location = 1) out vec4 out_tangent;
+layout(location = 2) out vec2 out_uv;
+layout(location = 3) flat out uint out_material;
+
+void main() {
+  SceneInstance instance = scene_instances[gl_InstanceIndex];
+  vec4 world = instance.world * vec4(in_position, 1.0);
+  out_normal = mat3(instance.normal_matrix) * in_normal;
+  out_tangent = scene_world_tangent(instance, in_tangent);
+  out_uv = in_uv;
+  out_material = instance.material;
+  gl_Position = frame.view_proj * world;
+}

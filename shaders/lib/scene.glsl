@@ -1,0 +1,180 @@
+#ifndef VOXGI_SCENE_GLSL
+#define VOXGI_SCENE_GLSL
+// Descriptor set 1 of scene-drawing pipelines (voxgi::scene::GpuScene) and material sampling.
+// The std430 structs mirror GpuMaterial, GpuInstance and GpuLight in
+// engine/scene/gpu_scene.hpp; keep them in step.
+//
+// Textures are layers of two array textures (sRGB and linear), so a material index may differ
+// per pixel without descriptor indexing. Shaders outside the fragment stage have no implicit
+// derivatives: define SCENE_TEXTURE_EXPLICIT_LOD before including this file, and the textures
+// are sampled at mip level scene_texture_lod (default 0).
+
+struct SceneMaterial {
+  vec4 base_color;
+  vec3 emissive;
+  float metallic;
+  float roughness;
+  float normal_scale;
+  float occlusion_strength;
+  float alpha_cutoff;
+  int base_color_tex;  // layer in scene_textures_srgb; -1: none
+  int metallic_roughness_tex;  // layer in scene_textures_linear
+  int normal_tex;              // layer in scene_textures_linear
+  int occlusion_tex;           // layer in scene_textures_linear
+  int emissive_tex;            // layer in scene_textures_srgb
+  uint alpha_mode;  // SCENE_ALPHA_*
+  uint double_sided;
+  uint clamp_mask;  // bit per slot (base, metallic-roughness, normal, occlusion, emissive)
+};
+
+const uint SCENE_ALPHA_OPAQUE = 0u;
+const uint SCENE_ALPHA_MASK = 1u;
+const uint SCENE_ALPHA_BLEND = 2u;
+
+// SceneInstance.flags: the world matrix mirrors (negative determinant). The draw already uses
+// winding-swapped indices; only the tangent handedness needs the flip (scene_world_tangent).
+const uint SCENE_INSTANCE_MIRRORED = 1u;
+
+struct SceneInstance {
+  mat4 world;
+  mat4 normal_matrix;  // inverse transpose of world
+  uint material;
+  uint flags;
+  uint pad0;
+  uint pad1;
+};
+
+const uint SCENE_LIGHT_DIRECTIONAL = 0u;
+const uint SCENE_LIGHT_POINT = 1u;
+const uint SCENE_LIGHT_SPOT = 2u;
+
+struct SceneLight {
+  vec3 position;
+  uint type;       // SCENE_LIGHT_*
+  vec3 direction;  // where the light points
+  float range;     // 0 = infinite
+  vec3 radiance;   // color × intensity (cd for point/spot, lux for directional)
+  float spot_scale;   // cone: clamp(cos_angle * spot_scale + spot_offset, 0, 1)^2
+  float spot_offset;  // (point and directional: scale 0, offset 1)
+  int shadow_index;
+  float pad0;
+  float pad1;
+};
+
+layout(set = 1, binding = 0, std430) readonly buffer SceneMaterials {
+  SceneMaterial scene_materials[];
+};
+layout(set = 1, binding = 1, std430) readonly buffer SceneInstances {
+  SceneInstance scene_instances[];
+};
+layout(set = 1, binding = 2, std430) readonly buffer SceneLights {
+  uint scene_lights_count;
+  uint scene_lights_pad0;
+  uint scene_lights_pad1;
+  uint scene_lights_pad2;
+  SceneLight scene_lights[];
+};
+layout(set = 1, binding = 3) uniform sampler2DArray scene_textures_srgb;
+layout(set = 1, binding = 4) uniform sampler2DArray scene_textures_linear;
+
+float scene_texture_lod = 0.0;  // with SCENE_TEXTURE_EXPLICIT_LOD
+
+uint scene_light_count() { return scene_lights_count; }
+
+// World-space tangent (xyz) and handedness (w) of a vertex tangent under an instance.
+vec4 scene_world_tangent(SceneInstance instance, vec4 tangent) {
+  float w = (instance.flags & SCENE_INSTANCE_MIRRORED) != 0u ? -tangent.w : tangent.w;
+  return vec4(mat3(instance.world) * tangent.xyz, w);
+}
+
+struct MaterialSample {
+  vec4 base_color;  // linear RGB, alpha
+  float metallic;
+  float roughness;  // >= 0.03
+  vec3 normal;      // shading normal (unit)
+  float occlusion;  // 1 = unoccluded
+  vec3 emissive;    // radiance
+  bool alpha_mask;  // alpha mode MASK: discard when base_color.a < alpha_cutoff
+  bool alpha_blend;
+  float alpha_cutoff;
+  bool double_sided;
+};
+
+// The sampler repeats; clamp-to-edge textures (glTF CLAMP_TO_EDGE) are clamped here.
+vec2 scene_texture_uv(vec2 uv, uint clamp_mask, uint slot) {
+  return (clamp_mask & (1u << slot)) != 0u ? clamp(uv, 0.0, 1.0) : uv;
+}
+
+vec4 scene_texture_srgb(int layer, vec2 uv) {
+#ifdef SCENE_TEXTURE_EXPLICIT_LOD
+  return textureLod(scene_textures_srgb, vec3(uv, float(layer)), scene_texture_lod);
+#else
+  return texture(scene_textures_srgb, vec3(uv, float(layer)));
+#endif
+}
+
+vec4 scene_texture_linear(int layer, vec2 uv) {
+#ifdef SCENE_TEXTURE_EXPLICIT_LOD
+  return textureLod(scene_textures_linear, vec3(uv, float(layer)), scene_texture_lod);
+#else
+  return texture(scene_textures_linear, vec3(uv, float(layer)));
+#endif
+}
+
+// normal and tangent are world-space interpolated vertex values (any length);
+// tangent.w is the bitangent sign.
+MaterialSample sample_material(uint material, vec2 uv, vec3 normal, vec4 tangent) {
+  SceneMaterial m = scene_materials[material];
+  MaterialSample s;
+  s.base_color = m.base_color;
+  if (m.base_color_tex >= 0) {
+    s.base_color *= scene_texture_srgb(m.base_color_tex, scene_texture_uv(uv, m.clamp_mask, 0u));
+  }
+  s.metallic = m.metallic;
+  s.roughness = m.roughness;
+  if (m.metallic_roughness_tex >= 0) {
+    vec4 mr = scene_texture_linear(m.metallic_roughness_tex, scene_texture_uv(uv, m.clamp_mask, 1u));
+    s.roughness *= mr.g;  // glTF: roughness in green, metallic in blue
+    s.metallic *= mr.b;
+  }
+  s.metallic = clamp(s.metallic, 0.0, 1.0);
+  s.roughness = clamp(s.roughness, 0.03, 1.0);
+
+  float n_len2 = dot(normal, normal);
+  vec3 n = n_len2 > 1e-20 ? normal * inversesqrt(n_len2) : vec3(0.0, 1.0, 0.0);
+  s.normal = n;
+  if (m.normal_tex >= 0) {
+    // Gram-Schmidt the interpolated tangent; skip the map where the frame is degenerate.
+    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+    float t_len2 = dot(t, t);
+    if (t_len2 > 1e-20) {
+      t *= inversesqrt(t_len2);
+      vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
+      vec3 tn = scene_texture_linear(m.normal_tex, scene_texture_uv(uv, m.clamp_mask, 2u)).xyz * 2.0 - 1.0;
+      tn.xy *= m.normal_scale;
+      vec3 mapped = t * tn.x + b * tn.y + n * tn.z;
+      float mapped_len2 = dot(mapped, mapped);
+      if (mapped_len2 > 1e-20 && !isnan(mapped_len2) && !isinf(mapped_len2)) {
+        s.normal = mapped * inversesqrt(mapped_len2);
+      }
+    }
+  }
+
+  s.occlusion = 1.0;
+  if (m.occlusion_tex >= 0) {
+    float ao = scene_texture_linear(m.occlusion_tex, scene_texture_uv(uv, m.clamp_mask, 3u)).r;
+    s.occlusion = 1.0 + m.occlusion_strength * (ao - 1.0);
+  }
+  s.emissive = m.emissive;
+  if (m.emissive_tex >= 0) {
+    s.emissive *= scene_texture_srgb(m.emissive_tex, scene_texture_uv(uv, m.clamp_mask, 4u)).rgb;
+  }
+  s.alpha_mask = m.alpha_mode == SCENE_ALPHA_MASK;
+  s.alpha_blend = m.alpha_mode == SCENE_ALPHA_BLEND;
+  s.alpha_cutoff = m.alpha_cutoff;
+  s.double_sided = m.double_sided != 0u;
+  if (m.alpha_mode == SCENE_ALPHA_OPAQUE) s.base_color.a = 1.0;
+  return s;
+}
+
+#endif

@@ -1,0 +1,73 @@
+#include "render_harness.hpp"
+
+#include <filesystem>
+
+#include "engine/graph/graph_desc.hpp"
+#include "engine/graph/plugin_loader.hpp"
+#include "engine/scene/builtin_scenes.hpp"
+#include "engine/scene/gltf_loader.hpp"
+#include "tests/gpu/gpu_test_env.hpp"
+
+namespace voxgi::test {
+
+RenderHarness::RenderHarness(const RenderSetup& setup) : setup_(setup) {
+  const std::filesystem::path scene_path(setup.scene);
+  const std::string ext = scene_path.extension().string();
+  scene_ = (ext == ".gltf" || ext == ".glb") ? scene::load_gltf(scene_path)
+                                             : scene::make_builtin_scene(setup.scene);
+  scene_.update_transforms();
+  camera_ = scene_.cameras.empty() ? scene::default_camera(scene_) : scene_.cameras.front();
+
+  const graph::GraphDesc desc =
+      graph::load_graph_file(std::filesystem::path(VOXGI_SOURCE_DIR) / setup.graph);
+  graph::PluginLoader loader(graph::PluginLoader::default_search_dirs());
+  loader.load_for_graph(desc, registry_);
+  graph::CompileOptions options;
+  options.viewport_width = setup.width;
+  options.viewport_height = setup.height;
+  options.scene_features = scene_.features().as_map();
+  options.overrides = setup.overrides;
+  compiled_ = graph::compile(desc, registry_, options);
+
+  gpu::Context& context = gpu_context();
+  shaders_ = std::make_unique<gpu::ShaderCompiler>(
+      std::vector<std::filesystem::path>{std::filesystem::path(VOXGI_SOURCE_DIR) / "shaders"},
+      gpu::ShaderCompiler::default_cache_dir());
+  gpu_scene_ = std::make_unique<scene::GpuScene>(context, scene_);
+  executor_ = std::make_unique<graph::Executor>(context, *shaders_, registry_);
+  executor_->build(compiled_, scene_, *gpu_scene_);
+}
+
+RenderHarness::~RenderHarness() = default;
+
+glm::mat4 RenderHarness::view_proj() const {
+  const float aspect = static_cast<float>(setup_.width) / static_cast<float>(setup_.height);
+  return scene::projection_matrix(camera_, aspect) * scene::view_matrix(camera_);
+}
+
+void RenderHarness::render(int frames) {
+  const float aspect = static_cast<float>(setup_.width) / static_cast<float>(setup_.height);
+  for (int i = 0; i < frames; ++i) {
+    graph::Executor::FrameInput input;
+    input.view = scene::view_matrix(camera_);
+    input.proj = scene::projection_matrix(camera_, aspect);
+    input.camera_position = glm::vec3(camera_.world[3]);
+    input.znear = camera_.znear;
+    input.zfar = camera_.zfar;
+    input.time = 0.0;
+    const bool first = frames_rendered_ == 0;
+    input.camera_changed = first;
+    input.lights_changed = first;
+    input.geometry_changed = first;
+    executor_->render(input);
+    ++frames_rendered_;
+  }
+}
+
+RenderedImage RenderHarness::output(const std::string& name) {
+  RenderedImage image;
+  image.rgba = executor_->read_output(name, image.width, image.height);
+  return image;
+}
+
+}  // namespace voxgi::test

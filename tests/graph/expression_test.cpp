@@ -1,0 +1,105 @@
+#include <gtest/gtest.h>
+
+#include "engine/graph/expression.hpp"
+
+namespace voxgi::graph {
+namespace {
+
+ExpressionEnv env() {
+  ExpressionEnv e;
+  e.params = {{"res", 64}, {"on", 1}, {"off", 0}};
+  e.identifiers = {{"viewport", 800},
+                   {"viewport.width", 800},
+                   {"viewport.height", 600},
+                   {"scene.has_glossy", 1},
+                   {"scene.light_count", 3}};
+  e.identifier_kind = "scene feature";
+  return e;
+}
+
+double eval(const std::string& text) {
+  return evaluate_expression(text, env());
+}
+
+ExpressionError error_of(const std::string& text) {
+  try {
+    eval(text);
+  } catch (const ExpressionError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error for " << text;
+  return ExpressionError(0, "");
+}
+
+TEST(Expression, ArithmeticAndPrecedence) {
+  EXPECT_DOUBLE_EQ(eval("1 + 2 * 3"), 7);
+  EXPECT_DOUBLE_EQ(eval("(1 + 2) * 3"), 9);
+  EXPECT_DOUBLE_EQ(eval("10 - 4 - 3"), 3);
+  EXPECT_DOUBLE_EQ(eval("64 / 4 / 2"), 8);
+  EXPECT_DOUBLE_EQ(eval("-2 * -3"), 6);
+  EXPECT_DOUBLE_EQ(eval("6 * 4"), 24);
+  EXPECT_DOUBLE_EQ(eval("0.5 * 3"), 1.5);
+}
+
+TEST(Expression, ViewportAndParameters) {
+  EXPECT_DOUBLE_EQ(eval("viewport/2"), 400);
+  EXPECT_DOUBLE_EQ(eval("viewport.height / 2 + viewport.width"), 1100);
+  EXPECT_DOUBLE_EQ(eval("${res} * 2"), 128);
+}
+
+TEST(Expression, Conditions) {
+  EXPECT_DOUBLE_EQ(eval("scene.has_glossy && ${on}"), 1);
+  EXPECT_DOUBLE_EQ(eval("scene.has_glossy && ${off}"), 0);
+  EXPECT_DOUBLE_EQ(eval("!scene.has_glossy || ${on}"), 1);
+  EXPECT_DOUBLE_EQ(eval("!(scene.has_glossy || ${on})"), 0);
+  EXPECT_DOUBLE_EQ(eval("scene.light_count >= 3"), 1);
+  EXPECT_DOUBLE_EQ(eval("scene.light_count > 3"), 0);
+  EXPECT_DOUBLE_EQ(eval("scene.light_count <= 2"), 0);
+  EXPECT_DOUBLE_EQ(eval("scene.light_count < 4"), 1);
+  EXPECT_DOUBLE_EQ(eval("scene.light_count == 3 && ${res} != 32"), 1);
+  EXPECT_DOUBLE_EQ(eval("1 + 1 == 2"), 1);   // arithmetic binds tighter than comparison
+  EXPECT_DOUBLE_EQ(eval("0 || 1 && 0"), 0);  // && binds tighter than ||
+  EXPECT_DOUBLE_EQ(eval("true && !false"), 1);
+}
+
+TEST(Expression, ErrorsGiveColumns) {
+  ExpressionError e = error_of("1 + scene.has_glosy");
+  EXPECT_EQ(e.column(), 5);
+  EXPECT_STREQ(e.what(), "unknown scene feature 'scene.has_glosy'");
+  EXPECT_EQ(e.hint(), "scene.has_glossy");
+
+  e = error_of("${re} * 2");
+  EXPECT_EQ(e.column(), 1);
+  EXPECT_STREQ(e.what(), "unknown parameter '${re}'");
+  EXPECT_EQ(e.hint(), "res");
+
+  e = error_of("(1 + 2");
+  EXPECT_EQ(e.column(), 7);
+  EXPECT_STREQ(e.what(), "expected ')' to close '(' at column 1");
+
+  e = error_of("1 + * 2");
+  EXPECT_EQ(e.column(), 5);
+
+  e = error_of("4 / (2 - 2)");
+  EXPECT_EQ(e.column(), 3);
+  EXPECT_STREQ(e.what(), "division by zero");
+
+  e = error_of("2 3");
+  EXPECT_EQ(e.column(), 3);
+
+  e = error_of("$res");
+  EXPECT_EQ(e.column(), 1);
+
+  e = error_of("${res");
+  EXPECT_EQ(e.column(), 1);
+
+  e = error_of("   ");
+  EXPECT_EQ(e.column(), 1);
+  EXPECT_STREQ(e.what(), "empty expression");
+
+  e = error_of("1 # 2");
+  EXPECT_EQ(e.column(), 3);
+}
+
+}  // namespace
+}  // namespace voxgi::graph

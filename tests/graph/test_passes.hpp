@@ -1,0 +1,99 @@
+#pragma once
+// Pass types for compiler tests: real declarations, registered straight into a Registry. The
+// compiler only reads their PassTypeInfo; these tests never execute them.
+
+#include <memory>
+#include <string>
+
+#include "engine/graph/compiler.hpp"
+#include "engine/graph/graph_desc.hpp"
+#include "engine/graph/pass.hpp"
+
+namespace voxgi::graph::test {
+
+class DeclarationOnlyPass : public Pass {
+ public:
+  void execute(PassContext&) override {}
+};
+
+inline SlotSpec slot(std::string name, ResourceKinds kinds, Access access, uint32_t stages,
+                     bool optional = false, std::vector<VkFormat> formats = {}) {
+  SlotSpec s;
+  s.name = std::move(name);
+  s.kinds = kinds;
+  s.access = access;
+  s.stages = stages;
+  s.optional = optional;
+  s.formats = std::move(formats);
+  return s;
+}
+
+inline void add_type(Registry& registry, std::string type, std::vector<SlotSpec> inputs,
+                     std::vector<SlotSpec> outputs, std::vector<ParamSpec> params = {}) {
+  PassTypeInfo info;
+  info.type = std::move(type);
+  info.doc = "test pass";
+  info.inputs = std::move(inputs);
+  info.outputs = std::move(outputs);
+  info.params = std::move(params);
+  registry.add(std::move(info), [] { return std::make_unique<DeclarationOnlyPass>(); });
+}
+
+inline ParamSpec param(std::string name, ParamType type, double def, double min = 0, double max = 0,
+                       std::vector<std::string> choices = {}) {
+  ParamSpec p;
+  p.name = std::move(name);
+  p.type = type;
+  p.default_value = def;
+  p.min = min;
+  p.max = max;
+  p.choices = std::move(choices);
+  return p;
+}
+
+constexpr ResourceKinds kImages = static_cast<uint32_t>(ResourceKind::Image2D) |
+                                  static_cast<uint32_t>(ResourceKind::Image3D) |
+                                  static_cast<uint32_t>(ResourceKind::Clipmap);
+constexpr ResourceKinds kImage2D = static_cast<uint32_t>(ResourceKind::Image2D);
+constexpr ResourceKinds kBuffer = static_cast<uint32_t>(ResourceKind::Buffer);
+
+inline Registry make_registry() {
+  Registry r;
+  add_type(r, "test.clear", {}, {slot("color", kImage2D, Access::ColorAttachment, kStageFragment)},
+           {param("value", ParamType::Float, 0.5, 0.0, 1.0),
+            param("count", ParamType::Int, 1, 1, 8), param("enabled", ParamType::Bool, 1),
+            param("mode", ParamType::Enum, 0, 0, 0, {"fast", "slow"})});
+  add_type(r, "test.depth", {},
+           {slot("depth", kImage2D, Access::DepthAttachment, kStageFragment, false,
+                 {VK_FORMAT_D32_SFLOAT})});
+  add_type(r, "test.blur",
+           {slot("src", kImages, Access::Sampled, kStageCompute),
+            slot("extra", kImages, Access::Sampled, kStageCompute, true)},
+           {slot("dst", kImages, Access::StorageWrite, kStageCompute)});
+  add_type(r, "test.shade",
+           {slot("src", kImages, Access::Sampled, kStageFragment),
+            slot("extra", kImages, Access::Sampled, kStageFragment, true)},
+           {slot("color", kImage2D, Access::ColorAttachment, kStageFragment, false,
+                 {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT})});
+  add_type(r, "test.mip", {slot("src", kImages, Access::StorageRead, kStageCompute)},
+           {slot("dst", kImages, Access::StorageWrite, kStageCompute)});
+  add_type(r, "test.accumulate", {slot("src", kImages, Access::Sampled, kStageCompute, true)},
+           {slot("acc", kImages, Access::StorageReadWrite, kStageCompute)});
+  add_type(r, "test.fill", {}, {slot("buf", kBuffer, Access::StorageWrite, kStageCompute)});
+  add_type(r, "test.use_buffer", {slot("buf", kBuffer, Access::UniformRead, kStageCompute)},
+           {slot("dst", kImages, Access::StorageWrite, kStageCompute)});
+  return r;
+}
+
+inline const char* kTestFile = "graphs/test.json";
+
+inline CompiledGraph compile_text(const std::string& text, const Registry& registry,
+                                  CompileOptions options = {}) {
+  if (options.viewport_width == 1280) {
+    options.viewport_width = 64;
+    options.viewport_height = 32;
+  }
+  return compile(parse_graph(text, kTestFile), registry, options);
+}
+
+}  // namespace voxgi::graph::test

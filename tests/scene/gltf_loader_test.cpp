@@ -1,0 +1,340 @@
+#include <gtest/gtest.h>
+#include <stb_image_write.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "engine/scene/gltf_loader.hpp"
+#include "tests/scene/gltf_writer.hpp"
+
+namespace voxgi::scene {
+namespace {
+
+using nlohmann::json;
+using test::GltfWriter;
+
+// The SceneError message of loading `path`, or "" when it loaded.
+std::string load_error(const std::filesystem::path& path) {
+  try {
+    load_gltf(path);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+bool any_warning(const Scene& scene, const std::string& part) {
+  for (const std::string& w : scene.warnings) {
+    if (contains(w, part)) return true;
+  }
+  return false;
+}
+
+class GltfLoader : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = test::fresh_dir("gltf"); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(GltfLoader, TriangleWithHierarchyLightsAndCamera) {
+  GltfWriter w;
+  const int child = w.add_node({{"name", "child"}, {"translation", {0, 0, -1}}}, false);
+  w.doc["meshes"].push_back({{"primitives", json::array({w.triangle()})}});
+  w.doc["nodes"][child]["mesh"] = 0;
+  w.add_node({{"name", "parent"}, {"children", {child}}, {"translation", {1, 2, 3}}});
+  // A matrix node: translation by (5, 0, 0).
+  w.add_node({{"name", "matrix"},
+              {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1}},
+              {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  w.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+  w.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "spot"},
+       {"color", {1, 0.5, 0.25}},
+       {"intensity", 20},
+       {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}}};
+  w.doc["cameras"] = {{{"type", "perspective"},
+                       {"name", "cam"},
+                       {"perspective", {{"yfov", 0.9}, {"znear", 0.05}}}}};
+  w.add_node({{"camera", 0}, {"translation", {0, 0, 10}}});
+  w.doc["materials"] = {
+      {{"name", "glow"},
+       {"emissiveFactor", {1, 0.5, 0}},
+       {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 8}}}}},
+       {"pbrMetallicRoughness", {{"roughnessFactor", 0.3}, {"metallicFactor", 0}}}}};
+  w.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  w.write_gltf(dir_ / "scene.gltf");
+
+  const Scene scene = load_gltf(dir_ / "scene.gltf");
+  EXPECT_TRUE(scene.warnings.empty()) << scene.warnings[0];
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const auto instances = scene.instances();
+  ASSERT_EQ(instances.size(), 1u);
+  EXPECT_EQ(glm::vec3(instances[0].world[3]), glm::vec3(1, 2, 2));
+  const Primitive& p = scene.meshes[0].primitives[0];
+  EXPECT_EQ(p.vertices.size(), 3u);
+  EXPECT_EQ(p.vertices[1].uv, glm::vec2(1, 0));
+  EXPECT_NEAR(p.vertices[0].tangent.x, 1.0f, 1e-6f);  // generated from the UVs
+  EXPECT_EQ(scene.materials[0].emissive, glm::vec3(8, 4, 0));
+  EXPECT_NEAR(scene.materials[0].roughness, 0.3f, 1e-6f);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].type, LightType::Spot);
+  EXPECT_EQ(scene.lights[0].position, glm::vec3(5, 0, 0));
+  EXPECT_EQ(scene.lights[0].direction, glm::vec3(0, 0, -1));
+  EXPECT_NEAR(scene.lights[0].outer_cone, 0.5f, 1e-6f);
+  ASSERT_EQ(scene.cameras.size(), 1u);
+  EXPECT_EQ(scene.cameras[0].name, "cam");
+  EXPECT_GT(scene.cameras[0].zfar, 10.0f);  // infinite → from the bounds
+  const SceneFeatures f = scene.features();
+  EXPECT_TRUE(f.has_emissive);
+  EXPECT_TRUE(f.has_glossy);
+  EXPECT_TRUE(f.has_spot_lights);
+}
+
+TEST_F(GltfLoader, NormalizedIntegersNonIndexedAndMissingNormals) {
+  GltfWriter w;
+  json p;
+  p["attributes"]["POSITION"] = w.add_floats({0, 0, 0, 1, 0, 0, 0, 0, -1}, "VEC3", 3);
+  p["attributes"]["TEXCOORD_0"] =
+      w.add_accessor(std::vector<uint8_t>{0, 0, 255, 0, 0, 255, 0, 0}, 5121, "VEC2", 3, true);
+  w.add_mesh_node(p);
+  // int16 normalized normals (0, 32767, 0) and uint16 indices on a second primitive.
+  json q;
+  q["attributes"]["POSITION"] = w.add_floats({0, 0, 0, 1, 0, 0, 0, 0, -1}, "VEC3", 3);
+  q["attributes"]["NORMAL"] = w.add_accessor(
+      std::vector<int16_t>{0, 32767, 0, 0, 0, 32767, 0, 0, 0, 0, 0, 0}, 5122, "VEC3", 3, true);
+  q["indices"] = w.add_indices({0, 1, 2});
+  w.add_mesh_node(q);
+  w.write_glb(dir_ / "ints.glb");
+
+  const Scene scene = load_gltf(dir_ / "ints.glb");
+  const Primitive& a = scene.meshes[0].primitives[0];
+  ASSERT_EQ(a.indices.size(), 3u);
+  EXPECT_EQ(a.vertices[1].uv, glm::vec2(1, 0));
+  for (const Vertex& v : a.vertices) EXPECT_NEAR(v.normal.y, 1.0f, 1e-6f);  // flat, +Y
+  const Primitive& b = scene.meshes[1].primitives[0];
+  EXPECT_NEAR(b.vertices[0].normal.y, 1.0f, 1e-6f);
+  EXPECT_NEAR(b.vertices[1].normal.z, 1.0f, 1e-6f);  // normalized, then row 3 skipped
+  // The third normal was zero: repaired from the face (+Y).
+  EXPECT_NEAR(b.vertices[2].normal.y, 1.0f, 1e-6f);
+}
+
+TEST_F(GltfLoader, UnsupportedFeaturesBecomeWarnings) {
+  GltfWriter w;
+  w.add_mesh_node(w.triangle());
+  json points;
+  points["attributes"]["POSITION"] = w.add_floats({0, 0, 0, 1, 1, 1}, "VEC3", 3);
+  points["mode"] = 0;
+  w.add_mesh_node(points);
+  w.doc["extensionsUsed"] = {"KHR_materials_transmission"};
+  w.doc["extensionsRequired"] = {"KHR_materials_transmission"};
+  w.doc["cameras"] = {{{"type", "orthographic"},
+                       {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}}};
+  w.add_node({{"camera", 0}});
+  // A texture whose image file is missing.
+  w.doc["images"] = {{{"uri", "missing.png"}}};
+  w.doc["textures"] = {{{"source", 0}}};
+  w.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  w.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  w.write_gltf(dir_ / "unsupported.gltf");
+
+  const Scene scene = load_gltf(dir_ / "unsupported.gltf");
+  EXPECT_TRUE(any_warning(scene, "KHR_materials_transmission"));
+  EXPECT_TRUE(any_warning(scene, "meshes[1].primitives[0].mode"));
+  EXPECT_TRUE(any_warning(scene, "orthographic"));
+  EXPECT_TRUE(any_warning(scene, "textures[0]"));
+  EXPECT_EQ(scene.meshes[1].primitives.size(), 0u);
+  EXPECT_EQ(scene.cameras.size(), 0u);
+  EXPECT_EQ(scene.materials[0].base_color_tex, -1);
+  EXPECT_EQ(scene.features().triangle_count, 1u);
+}
+
+TEST_F(GltfLoader, TexturesExpandToRgbaAndSplitByColourSpace) {
+  // A 3 × 5 grey PNG (1 channel, non power of two) used as base colour and occlusion.
+  std::vector<uint8_t> grey(15);
+  for (size_t i = 0; i < grey.size(); ++i) grey[i] = uint8_t(i * 10);
+  ASSERT_NE(stbi_write_png((dir_ / "grey.png").c_str(), 3, 5, 1, grey.data(), 3), 0);
+  // And a corrupt image file.
+  std::ofstream(dir_ / "corrupt.png") << "not a png";
+  GltfWriter w;
+  json p = w.triangle();
+  p["material"] = 0;
+  w.add_mesh_node(p);
+  w.doc["images"] = {{{"uri", "grey.png"}}, {{"uri", "corrupt.png"}}};
+  w.doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33071}}};
+  w.doc["textures"] = {{{"source", 0}, {"sampler", 0}}, {{"source", 1}}};
+  w.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+                         {"occlusionTexture", {{"index", 0}, {"strength", 0.5}}},
+                         {"normalTexture", {{"index", 1}}}}};
+  w.write_gltf(dir_ / "textured.gltf");
+
+  const Scene scene = load_gltf(dir_ / "textured.gltf");
+  ASSERT_EQ(scene.textures.size(), 2u);
+  const Material& m = scene.materials[0];
+  ASSERT_GE(m.base_color_tex, 0);
+  ASSERT_GE(m.occlusion_tex, 0);
+  EXPECT_NE(m.base_color_tex, m.occlusion_tex);
+  EXPECT_EQ(m.normal_tex, -1);  // corrupt image: dropped with a warning
+  EXPECT_TRUE(any_warning(scene, "images[1]"));
+  const Texture& srgb = scene.textures[size_t(m.base_color_tex)];
+  const Texture& linear = scene.textures[size_t(m.occlusion_tex)];
+  EXPECT_TRUE(srgb.srgb);
+  EXPECT_FALSE(linear.srgb);
+  EXPECT_FALSE(srgb.wrap_repeat);
+  EXPECT_EQ(srgb.width, 3u);
+  EXPECT_EQ(srgb.height, 5u);
+  EXPECT_EQ(srgb.channels, 4u);
+  EXPECT_EQ(srgb.bits, 8u);
+  ASSERT_EQ(srgb.pixels.size(), 3u * 5u * 4u);
+  EXPECT_EQ(srgb.pixels[7 * 4 + 0], 70);
+  EXPECT_EQ(srgb.pixels[7 * 4 + 2], 70);
+  EXPECT_EQ(srgb.pixels[7 * 4 + 3], 255);
+  EXPECT_NEAR(m.occlusion_strength, 0.5f, 1e-6f);
+  EXPECT_TRUE(scene.features().has_textures);
+}
+
+TEST_F(GltfLoader, SixteenBitTexture) {
+  // A minimal 2 × 1 16-bit grey PNG: texels 0x1234 and 0xffff (zlib stored block).
+  const std::vector<uint8_t> png = {
+      0x89, 'P',  'N',  'G',  0x0d, 0x0a, 0x1a, 0x0a, 0,    0,    0,    13,   'I',  'H',  'D',
+      'R',  0,    0,    0,    2,    0,    0,    0,    1,    16,   0,    0,    0,    0,    0x81,
+      0xd9, 0xfc, 0x15, 0,    0,    0,    16,   'I',  'D',  'A',  'T',  0x78, 0x01, 0x01, 0x05,
+      0x00, 0xfa, 0xff, 0x00, 0x12, 0x34, 0xff, 0xff, 0x03, 0xe6, 0x02, 0x45, 0xd2, 0xfc, 0x68,
+      0x73, 0,    0,    0,    0,    'I',  'E',  'N',  'D',  0xae, 0x42, 0x60, 0x82};
+  std::ofstream(dir_ / "deep.png", std::ios::binary)
+      .write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+  GltfWriter w;
+  json p = w.triangle();
+  p["material"] = 0;
+  w.add_mesh_node(p);
+  w.doc["images"] = {{{"uri", "deep.png"}}};
+  w.doc["textures"] = {{{"source", 0}}};
+  w.doc["materials"] = {{{"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 0}}}}}}};
+  w.write_gltf(dir_ / "deep.gltf");
+  const Scene scene = load_gltf(dir_ / "deep.gltf");
+  ASSERT_EQ(scene.textures.size(), 1u) << (scene.warnings.empty() ? "" : scene.warnings[0]);
+  const Texture& t = scene.textures[0];
+  EXPECT_EQ(t.bits, 16u);
+  EXPECT_FALSE(t.srgb);
+  ASSERT_EQ(t.pixels.size(), 2u * 4u * 2u);
+  uint16_t texel[8];
+  std::memcpy(texel, t.pixels.data(), sizeof(texel));
+  EXPECT_EQ(texel[0], 0x1234);
+  EXPECT_EQ(texel[2], 0x1234);
+  EXPECT_EQ(texel[3], 0xffff);  // opaque
+  EXPECT_EQ(texel[4], 0xffff);
+}
+
+TEST_F(GltfLoader, NegativeScaleMirrorsTheInstance) {
+  GltfWriter w;
+  w.add_mesh_node(w.triangle(), {{"scale", {-1, 1, 1}}});
+  w.write_glb(dir_ / "mirror.glb");
+  const Scene scene = load_gltf(dir_ / "mirror.glb");
+  const auto instances = scene.instances();
+  ASSERT_EQ(instances.size(), 1u);
+  EXPECT_TRUE(instances[0].mirrored);
+}
+
+TEST_F(GltfLoader, AnimationsAreLoaded) {
+  GltfWriter w;
+  const int node = w.add_mesh_node(w.triangle());
+  const int input = w.add_floats({0, 1}, "SCALAR", 1);
+  const int output = w.add_floats({0, 0, 0, 4, 0, 0}, "VEC3", 3);
+  json channel = {{"sampler", 0}, {"target", {{"node", node}, {"path", "translation"}}}};
+  json sampler = {{"input", input}, {"output", output}};
+  json animation = {{"channels", json::array({channel})}, {"samplers", json::array({sampler})}};
+  w.doc["animations"] = json::array({animation});
+  w.write_gltf(dir_ / "anim.gltf");
+  Scene scene = load_gltf(dir_ / "anim.gltf");
+  ASSERT_EQ(scene.animations.size(), 1u);
+  EXPECT_EQ(scene.animations[0].duration, 1.0f);
+  EXPECT_TRUE(scene.nodes[size_t(node)].animated);
+  EXPECT_TRUE(scene.animate(0.5));
+  EXPECT_EQ(scene.nodes[size_t(node)].translation, glm::vec3(2, 0, 0));
+  EXPECT_TRUE(scene.features().has_dynamic_geometry);
+}
+
+TEST_F(GltfLoader, MissingFile) {
+  const std::string message = load_error(dir_ / "nope.gltf");
+  EXPECT_TRUE(contains(message, (dir_ / "nope.gltf").string())) << message;
+  EXPECT_TRUE(contains(message, "does not exist")) << message;
+}
+
+TEST_F(GltfLoader, NotGltf) {
+  std::ofstream(dir_ / "bad.gltf") << "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ {";
+  const std::string message = load_error(dir_ / "bad.gltf");
+  EXPECT_TRUE(contains(message, (dir_ / "bad.gltf").string())) << message;
+  std::ofstream(dir_ / "text.gltf") << "hello";
+  EXPECT_FALSE(load_error(dir_ / "text.gltf").empty());
+  std::ofstream(dir_ / "empty.glb");
+  EXPECT_FALSE(load_error(dir_ / "empty.glb").empty());
+}
+
+TEST_F(GltfLoader, TruncatedGlb) {
+  GltfWriter w;
+  w.add_mesh_node(w.triangle());
+  std::vector<uint8_t> bytes = w.glb_bytes();
+  for (size_t keep : {bytes.size() - 9, bytes.size() / 2, size_t(20), size_t(12), size_t(5)}) {
+    const auto path = dir_ / ("cut" + std::to_string(keep) + ".glb");
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(keep));
+    const std::string message = load_error(path);
+    EXPECT_TRUE(contains(message, path.string())) << keep << ": " << message;
+  }
+}
+
+TEST_F(GltfLoader, OutOfRangeAccessor) {
+  GltfWriter w;
+  json p = w.triangle();
+  p["attributes"]["POSITION"] = 7;
+  w.add_mesh_node(p);
+  w.write_gltf(dir_ / "range.gltf");
+  const std::string message = load_error(dir_ / "range.gltf");
+  EXPECT_TRUE(contains(
+      message, (dir_ / "range.gltf").string() + ": meshes[0].primitives[0].attributes.POSITION"))
+      << message;
+  EXPECT_TRUE(contains(message, "accessor 7 out of range")) << message;
+}
+
+TEST_F(GltfLoader, OutOfRangeIndexAndBufferView) {
+  GltfWriter w;
+  json p = w.triangle();
+  p["indices"] = w.add_indices({0, 1, 3});
+  w.add_mesh_node(p);
+  w.write_gltf(dir_ / "index.gltf");
+  std::string message = load_error(dir_ / "index.gltf");
+  EXPECT_TRUE(contains(message, "meshes[0].primitives[0].indices")) << message;
+  EXPECT_TRUE(contains(message, "index 3")) << message;
+
+  GltfWriter v;
+  json q = v.triangle();
+  v.add_mesh_node(q);
+  v.doc["accessors"][0]["count"] = 1000;  // more elements than the view holds
+  v.write_gltf(dir_ / "view.gltf");
+  message = load_error(dir_ / "view.gltf");
+  EXPECT_TRUE(contains(message, "attributes.POSITION")) << message;
+
+  GltfWriter m;
+  json r = m.triangle();
+  r["material"] = 3;
+  m.add_mesh_node(r);
+  m.write_gltf(dir_ / "material.gltf");
+  message = load_error(dir_ / "material.gltf");
+  EXPECT_TRUE(contains(message, "meshes[0].primitives[0].material")) << message;
+}
+
+TEST_F(GltfLoader, NodeCycleIsAnError) {
+  GltfWriter w;
+  w.add_node({{"children", {1}}});
+  w.add_node({{"children", {0}}}, false);
+  w.write_gltf(dir_ / "cycle.gltf");
+  const std::string message = load_error(dir_ / "cycle.gltf");
+  EXPECT_TRUE(contains(message, "nodes[")) << message;
+}
+
+}  // namespace
+}  // namespace voxgi::scene

@@ -22,7 +22,8 @@ Scene make_cornell() {
   const int white = b.add_material(diffuse("white", {0.725f, 0.71f, 0.68f}));
   const int red = b.add_material(diffuse("red", {0.63f, 0.065f, 0.05f}));
   const int green = b.add_material(diffuse("green", {0.14f, 0.45f, 0.091f}));
-  Material emitter = diffuse("light", {0.78f, 0.78f, 0.78f});
+  // A pure emitter (black base colour): the point light 1 cm below it must not light it.
+  Material emitter = diffuse("light", {0.0f, 0.0f, 0.0f});
   const glm::vec3 radiance(17.0f, 12.0f, 4.0f);
   emitter.emissive = radiance;
   const int light = b.add_material(emitter);
@@ -61,7 +62,9 @@ Scene make_plane(const std::string& name, LightType type) {
   SceneBuilder b(name);
   const int floor = b.add_material(diffuse("floor", glm::vec3(0.8f)));
   b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, floor);
-  b.add_box("occluder", {0.5f, 0.5f, 0.0f}, glm::vec3(0.2f), floor);
+  // Placed so that its shadow falls inside the spot cone and, seen from the camera above, is
+  // not hidden under the box itself.
+  b.add_box("occluder", {0.25f, 0.4f, 0.0f}, glm::vec3(0.2f), floor);
   Light light;
   light.type = type;
   light.name = name + "_light";
@@ -74,7 +77,11 @@ Scene make_plane(const std::string& name, LightType type) {
     light.inner_cone = 0.3f;
     light.outer_cone = 0.6f;
   }
-  b.add_light(light, {0, 1, 0}, {0, -1, 0});
+  // The directional light comes in obliquely so that its shadow is not right under the box.
+  const glm::vec3 direction = type == LightType::Directional
+                                  ? glm::normalize(glm::vec3(0.5f, -1.0f, 0.0f))
+                                  : glm::vec3(0.0f, -1.0f, 0.0f);
+  b.add_light(light, {0, 1, 0}, direction);
   b.add_camera("default", {0, 3, 0}, {0, 0, 0}, 0.75f, {0, 0, -1});
   return b.finish();
 }

@@ -60,8 +60,8 @@ TEST_P(ShadowMapsTest, SwitchingShadowsOffLightsTheShadow) {
   const PlaneSceneProbe probe(harness.scene());
   const scene::Light& light = harness.scene().lights.at(0);
   int checked = 0;
-  for (uint32_t y = 0; y < image.height; y += 2) {
-    for (uint32_t x = 0; x < image.width; x += 2) {
+  for (uint32_t y = 0; y < image.height; ++y) {
+    for (uint32_t x = 0; x < image.width; ++x) {
       const std::optional<glm::vec3> p =
           probe.floor_point(harness.view_proj(), x, y, image.width, image.height);
       if (!p || !probe.occluded(light, *p, -0.03f)) continue;

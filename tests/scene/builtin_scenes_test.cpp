@@ -127,14 +127,14 @@ TEST(BuiltinScenes, PlaneScenesHaveOneLightOfEachType) {
   expect_vec3_near(spot.lights[0].direction, glm::vec3(0, -1, 0), 1e-6f);
   EXPECT_EQ(directional.lights[0].type, LightType::Directional);
   EXPECT_EQ(directional.lights[0].intensity, 2.0f);
-  expect_vec3_near(directional.lights[0].direction, glm::vec3(0, -1, 0), 1e-6f);
+  expect_vec3_near(directional.lights[0].direction, glm::normalize(glm::vec3(0.5f, -1, 0)), 1e-6f);
 
   const SceneFeatures f = spot.features();
   EXPECT_TRUE(f.has_spot_lights);
   EXPECT_FALSE(f.has_point_lights);
   EXPECT_EQ(f.triangle_count, 2u + 12u);
   expect_vec3_near(f.bounds_min, glm::vec3(-1, 0, -1), 1e-5f);
-  expect_vec3_near(f.bounds_max, glm::vec3(1, 0.6f, 1), 1e-5f);
+  expect_vec3_near(f.bounds_max, glm::vec3(1, 0.5f, 1), 1e-5f);
   EXPECT_EQ(point.materials[0].base_color, glm::vec4(0.8f, 0.8f, 0.8f, 1.0f));
 
   // The camera looks straight down at the plane.

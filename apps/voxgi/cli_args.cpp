@@ -49,8 +49,8 @@ void Args::parse(const std::vector<std::string>& argv) {
       value = *inline_value;
     } else {
       if (i + 1 >= argv.size()) {
-        throw UsageError(command_ + ": option '--" + name + "' needs a value (" +
-                         spec->value_name + ")");
+        throw UsageError(command_ + ": option '--" + name + "' needs a value (" + spec->value_name +
+                         ")");
       }
       value = argv[++i];
     }
@@ -96,8 +96,10 @@ std::string Args::help() const {
     std::string left = "  --" + spec.name;
     if (spec.takes_value) left += " " + spec.value_name;
     out << left;
-    if (left.size() < 28) out << std::string(28 - left.size(), ' ');
-    else out << "\n" << std::string(28, ' ');
+    if (left.size() < 28)
+      out << std::string(28 - left.size(), ' ');
+    else
+      out << "\n" << std::string(28, ' ');
     out << spec.doc << (spec.repeatable ? " (repeatable)" : "") << "\n";
   }
   return out.str();

@@ -13,7 +13,8 @@ namespace {
 
 Args graph_args(const std::string& verb) {
   return Args("voxgi graph " + verb,
-              {{"scene", true, false, "cornell|PATH", "scene whose features decide `when` conditions (default cornell)"},
+              {{"scene", true, false, "cornell|PATH",
+                "scene whose features decide `when` conditions (default cornell)"},
                {"width", true, false, "W", "viewport width for sizes (default 1280)"},
                {"height", true, false, "H", "viewport height for sizes (default 720)"},
                {"set", true, true, "KEY=VALUE", "override a graph or pass parameter"},

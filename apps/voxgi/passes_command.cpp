@@ -12,10 +12,14 @@ namespace {
 
 std::string param_type_name(const graph::ParamSpec& p) {
   switch (p.type) {
-    case graph::ParamType::Bool: return "bool";
-    case graph::ParamType::Int: return "int";
-    case graph::ParamType::Float: return "float";
-    case graph::ParamType::Enum: return "enum";
+    case graph::ParamType::Bool:
+      return "bool";
+    case graph::ParamType::Int:
+      return "int";
+    case graph::ParamType::Float:
+      return "float";
+    case graph::ParamType::Enum:
+      return "enum";
   }
   return "?";
 }
@@ -23,13 +27,16 @@ std::string param_type_name(const graph::ParamSpec& p) {
 std::string default_text(const graph::ParamSpec& p) {
   std::ostringstream out;
   switch (p.type) {
-    case graph::ParamType::Bool: out << (p.default_value != 0.0 ? "true" : "false"); break;
+    case graph::ParamType::Bool:
+      out << (p.default_value != 0.0 ? "true" : "false");
+      break;
     case graph::ParamType::Enum: {
       const size_t i = static_cast<size_t>(p.default_value);
       out << (i < p.choices.size() ? p.choices[i] : "?");
       break;
     }
-    default: out << p.default_value;
+    default:
+      out << p.default_value;
   }
   return out.str();
 }
@@ -68,9 +75,10 @@ int passes_command(const std::vector<std::string>& argv) {
   const bool markdown = args.flag("markdown");
   for (const graph::PassTypeInfo* info : registry.all()) {
     if (markdown) {
-      std::cout << "### `" << info->type << "`\n\n" << info->doc << "\n\n"
-                << "inputs: " << slots_text(info->inputs) << " — outputs: "
-                << slots_text(info->outputs) << " (`?` optional)\n\n";
+      std::cout << "### `" << info->type << "`\n\n"
+                << info->doc << "\n\n"
+                << "inputs: " << slots_text(info->inputs)
+                << " — outputs: " << slots_text(info->outputs) << " (`?` optional)\n\n";
       if (!info->params.empty()) {
         std::cout << "| parameter | type | default | range | live | description |\n"
                   << "|---|---|---|---|---|---|\n";

@@ -25,22 +25,27 @@ namespace {
 namespace fs = std::filesystem;
 
 Args render_args() {
-  return Args("voxgi render",
-              {{"scene", true, false, "cornell|PATH.gltf|PATH.glb", "scene to render (default cornell)"},
-               {"graph", true, false, "FILE", "graph file (default graphs/default.json)"},
-               {"width", true, false, "W", "image width (default 1280)"},
-               {"height", true, false, "H", "image height (default 720)"},
-               {"camera", true, false, "NAME", "glTF camera (default: the scene's first)"},
-               {"frames", true, false, "N", "frames to render (default 1)"},
-               {"fps", true, false, "N", "frames per second of scene time for animations (default 30)"},
-               {"out", true, false, "PATH", "output stem: writes PATH.png and PATH.exr (default out/default)"},
-               {"set", true, true, "KEY=VALUE", "override a graph or pass parameter (pass.param=value)"},
-               {"timings", true, false, "PATH.json", "write per-pass GPU/CPU times (medians after warm-up)"},
-               {"device", true, false, "INDEX|NAME", "Vulkan device (default: discrete GPU, else lavapipe)"},
-               {"validation", false, false, "", "enable the Vulkan validation layer; messages fail the run"},
-               {"full-barriers", false, false, "", "a full barrier between passes (to rule out sync bugs)"},
-               {"dump-dir", true, false, "DIR", "write every compile phase (JSON, DOT) to DIR"},
-               {"help", false, false, "", "show this help"}});
+  return Args(
+      "voxgi render",
+      {{"scene", true, false, "cornell|PATH.gltf|PATH.glb", "scene to render (default cornell)"},
+       {"graph", true, false, "FILE", "graph file (default graphs/default.json)"},
+       {"width", true, false, "W", "image width (default 1280)"},
+       {"height", true, false, "H", "image height (default 720)"},
+       {"camera", true, false, "NAME", "glTF camera (default: the scene's first)"},
+       {"frames", true, false, "N", "frames to render (default 1)"},
+       {"fps", true, false, "N", "frames per second of scene time for animations (default 30)"},
+       {"out", true, false, "PATH",
+        "output stem: writes PATH.png and PATH.exr (default out/default)"},
+       {"set", true, true, "KEY=VALUE", "override a graph or pass parameter (pass.param=value)"},
+       {"timings", true, false, "PATH.json",
+        "write per-pass GPU/CPU times (medians after warm-up)"},
+       {"device", true, false, "INDEX|NAME",
+        "Vulkan device (default: discrete GPU, else lavapipe)"},
+       {"validation", false, false, "",
+        "enable the Vulkan validation layer; messages fail the run"},
+       {"full-barriers", false, false, "", "a full barrier between passes (to rule out sync bugs)"},
+       {"dump-dir", true, false, "DIR", "write every compile phase (JSON, DOT) to DIR"},
+       {"help", false, false, "", "show this help"}});
 }
 
 fs::path output_stem(const std::string& arg) {
@@ -92,9 +97,11 @@ int render_command(const std::vector<std::string>& argv) {
   check_writable_folder(stem, "--out");
   if (timings_path) check_writable_folder(*timings_path, "--timings");
 
-  const graph::GraphDesc desc = graph::load_graph_file(resolve_graph_path(args.value_or("graph", "graphs/default.json")));
+  const graph::GraphDesc desc =
+      graph::load_graph_file(resolve_graph_path(args.value_or("graph", "graphs/default.json")));
   scene::Scene scene = load_scene(args.value_or("scene", "cornell"));
-  for (const std::string& warning : scene.warnings) std::cerr << "voxgi: warning: " << warning << "\n";
+  for (const std::string& warning : scene.warnings)
+    std::cerr << "voxgi: warning: " << warning << "\n";
   const scene::Camera camera = choose_camera(scene, args.value_or("camera", ""));
 
   graph::Registry registry;

@@ -114,8 +114,8 @@ std::string TimingsReport::table() const {
                 "cpu ms", "note");
   out << line;
   for (const PassSummary& s : summary()) {
-    std::string note = s.skipped ? "skipped " + std::to_string(s.skipped) + "x: " + s.skip_reason
-                                 : "";
+    std::string note =
+        s.skipped ? "skipped " + std::to_string(s.skipped) + "x: " + s.skip_reason : "";
     std::snprintf(line, sizeof line, "%-18s %-28s %10.3f %10.3f  %s\n", s.pass.c_str(),
                   s.type.c_str(), s.gpu_ms_median, s.cpu_ms_median, note.c_str());
     out << line;

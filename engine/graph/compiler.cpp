@@ -139,12 +139,15 @@ class Compiler {
   ExpressionEnv size_env(double viewport) const {
     ExpressionEnv env;
     env.params = graph_.parameters;
-    env.identifiers = {{"viewport", viewport},
-                       {"viewport.width", static_cast<double>(options_.viewport_width)},
-                       {"viewport.height", static_cast<double>(options_.viewport_height)}};
+    // Scene features let sizes follow the scene (e.g. shadow layers per light present).
+    env.identifiers = options_.scene_features;
+    env.identifiers["viewport"] = viewport;
+    env.identifiers["viewport.width"] = static_cast<double>(options_.viewport_width);
+    env.identifiers["viewport.height"] = static_cast<double>(options_.viewport_height);
     env.identifier_kind = "name";
     env.identifier_help =
-        "sizes may use viewport, viewport.width, viewport.height and ${parameters}";
+        "sizes may use viewport, viewport.width, viewport.height, scene features, min(a, b), "
+        "max(a, b) and ${parameters}";
     return env;
   }
 

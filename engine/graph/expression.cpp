@@ -1,5 +1,6 @@
 #include "engine/graph/expression.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -10,9 +11,9 @@
 namespace voxgi::graph {
 
 struct Expression::Node {
-  enum class Op { Number, Param, Identifier, Negate, Not, Binary };
+  enum class Op { Number, Param, Identifier, Negate, Not, Binary, Call };
   Op op = Op::Number;
-  std::string binary_op;  // "+", "&&", "<=", ...
+  std::string binary_op;  // "+", "&&", "<=", ...; Call: "min" or "max"
   double number = 0.0;
   std::string name;
   int column = 1;
@@ -133,6 +134,8 @@ class ExprParser {
         ++pos_;
       }
       node->name = std::string(text_.substr(start, pos_ - start));
+      skip_space();
+      if (!at_end() && text_[pos_] == '(') return parse_call(std::move(node));
       if (node->name == "true" || node->name == "false") {
         node->op = Node::Op::Number;
         node->number = node->name == "true" ? 1.0 : 0.0;
@@ -142,6 +145,30 @@ class ExprParser {
       return node;
     }
     throw ExpressionError(column(), "unexpected '" + std::string(1, c) + "': expected a value");
+  }
+
+  // min(a, b) and max(a, b): sizes that follow the scene, e.g. max(1, scene.light_count).
+  std::unique_ptr<Node> parse_call(std::unique_ptr<Node> node) {
+    if (node->name != "min" && node->name != "max") {
+      throw ExpressionError(node->column, "unknown function '" + node->name + "'",
+                            did_you_mean(node->name, {"min", "max"}));
+    }
+    node->op = Node::Op::Call;
+    node->binary_op = node->name;
+    ++pos_;  // '('
+    node->lhs = parse_binary(0);
+    skip_space();
+    if (at_end() || text_[pos_] != ',') {
+      throw ExpressionError(column(), "expected ',' between the two arguments of " + node->name);
+    }
+    ++pos_;
+    node->rhs = parse_binary(0);
+    skip_space();
+    if (at_end() || text_[pos_] != ')') {
+      throw ExpressionError(column(), "expected ')' after the arguments of " + node->name);
+    }
+    ++pos_;
+    return node;
   }
 
   std::string_view text_;
@@ -181,6 +208,11 @@ double eval(const Node& n, const ExpressionEnv& env) {
       return -eval(*n.lhs, env);
     case Node::Op::Not:
       return eval(*n.lhs, env) == 0.0 ? 1.0 : 0.0;
+    case Node::Op::Call: {
+      const double a = eval(*n.lhs, env);
+      const double b = eval(*n.rhs, env);
+      return n.binary_op == "min" ? std::min(a, b) : std::max(a, b);
+    }
     case Node::Op::Binary:
       break;
   }

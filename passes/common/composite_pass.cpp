@@ -38,8 +38,8 @@ class CompositePass final : public graph::Pass {
       if (bound) bindings.push_back({1 + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
       defines.push_back({kOptionalDefines[i], bound ? "1" : "0"});
     }
-    pipeline_.emplace(
-        make_common_compute(ctx, "composite.comp", bindings, sizeof(CompositePush), false, defines));
+    pipeline_.emplace(make_common_compute(ctx, "composite.comp", bindings, sizeof(CompositePush),
+                                          false, defines));
   }
 
   void execute(graph::PassContext& ctx) override {
@@ -58,9 +58,9 @@ class CompositePass final : public graph::Pass {
     const VkExtent3D extent = out.info->extent;
     pipeline_->bind(cmd);
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
-    pipeline_->push_constants(cmd, CompositePush{extent.width, extent.height,
-                                                 static_cast<float>(ctx.number("indirect_scale")),
-                                                 0.0f});
+    pipeline_->push_constants(
+        cmd, CompositePush{extent.width, extent.height,
+                           static_cast<float>(ctx.number("indirect_scale")), 0.0f});
     dispatch_over_image(cmd, extent.width, extent.height);
   }
 
@@ -75,19 +75,33 @@ void register_composite(graph::Registry& registry) {
   info.type = "common.composite";
   info.doc = "Sums direct and indirect radiance; ambient occlusion scales the indirect terms";
   auto input = [](const char* name, bool optional, const char* doc) {
-    return graph::SlotSpec{name, graph::kinds(ResourceKind::Image2D), Access::Sampled,
-                           graph::kStageCompute, {}, optional, doc};
+    return graph::SlotSpec{name,
+                           graph::kinds(ResourceKind::Image2D),
+                           Access::Sampled,
+                           graph::kStageCompute,
+                           {},
+                           optional,
+                           doc};
   };
   info.inputs = {input("direct", false, "direct radiance (emission included)"),
                  input("indirect_diffuse", true, "indirect diffuse radiance"),
                  input("indirect_specular", true, "indirect specular radiance"),
                  input("ambient_occlusion", true, "ambient occlusion in r (1 = unoccluded)")};
-  info.outputs = {{"radiance", graph::kinds(ResourceKind::Image2D), Access::StorageWrite,
+  info.outputs = {{"radiance",
+                   graph::kinds(ResourceKind::Image2D),
+                   Access::StorageWrite,
                    graph::kStageCompute,
-                   {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT}, false,
+                   {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT},
+                   false,
                    "scene-referred linear radiance"}};
-  info.params = {{"indirect_scale", graph::ParamType::Float, 1.0, 0.0, 16.0, {},
-                  "multiplier of the indirect terms (1 = physically based)", true}};
+  info.params = {{"indirect_scale",
+                  graph::ParamType::Float,
+                  1.0,
+                  0.0,
+                  16.0,
+                  {},
+                  "multiplier of the indirect terms (1 = physically based)",
+                  true}};
   registry.add(std::move(info), [] { return std::make_unique<CompositePass>(); });
 }
 

@@ -69,10 +69,14 @@ class DeferredLightingPass final : public graph::Pass {
       writer.sampled_image(1 + i, r.view, r.layout, nearest);
     }
     writer.storage_image(8, out.view, out.layout);
-    LightingPush push{extent.width, extent.height, 0, 0,
+    LightingPush push{extent.width,
+                      extent.height,
+                      0,
+                      0,
                       static_cast<float>(ctx.number("normal_bias")),
                       ctx.integer("pcf_radius"),
-                      static_cast<float>(ctx.number("background")), 0.0f};
+                      static_cast<float>(ctx.number("background")),
+                      0.0f};
     if (has_shadows_) {
       const graph::BoundResource& maps = ctx.resource("shadow_maps");
       const graph::BoundResource& matrices = ctx.resource("shadow_matrices");
@@ -96,8 +100,9 @@ class DeferredLightingPass final : public graph::Pass {
 };
 
 graph::SlotSpec gbuffer_input(const char* name, const char* doc) {
-  return {name, graph::kinds(ResourceKind::Image2D), Access::Sampled, graph::kStageCompute, {},
-          false, doc};
+  return {
+      name, graph::kinds(ResourceKind::Image2D), Access::Sampled, graph::kStageCompute, {}, false,
+      doc};
 }
 
 }  // namespace
@@ -113,25 +118,61 @@ void register_deferred_lighting(graph::Registry& registry) {
       gbuffer_input("normal", "G-buffer normal + roughness"),
       gbuffer_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
       gbuffer_input("emission", "G-buffer emission"),
-      {"depth", graph::kinds(ResourceKind::Image2D), Access::Sampled, graph::kStageCompute,
-       {VK_FORMAT_D32_SFLOAT}, false, "G-buffer depth"},
-      {"shadow_maps", graph::kinds(ResourceKind::Image2D), Access::Sampled, graph::kStageCompute,
-       {VK_FORMAT_D32_SFLOAT}, true, "from common.shadow_maps; unbound: no shadows"},
-      {"shadow_matrices", graph::kinds(ResourceKind::Buffer), Access::StorageRead,
-       graph::kStageCompute, {}, true, "from common.shadow_maps"},
+      {"depth",
+       graph::kinds(ResourceKind::Image2D),
+       Access::Sampled,
+       graph::kStageCompute,
+       {VK_FORMAT_D32_SFLOAT},
+       false,
+       "G-buffer depth"},
+      {"shadow_maps",
+       graph::kinds(ResourceKind::Image2D),
+       Access::Sampled,
+       graph::kStageCompute,
+       {VK_FORMAT_D32_SFLOAT},
+       true,
+       "from common.shadow_maps; unbound: no shadows"},
+      {"shadow_matrices",
+       graph::kinds(ResourceKind::Buffer),
+       Access::StorageRead,
+       graph::kStageCompute,
+       {},
+       true,
+       "from common.shadow_maps"},
   };
-  info.outputs = {{"radiance", graph::kinds(ResourceKind::Image2D), Access::StorageWrite,
+  info.outputs = {{"radiance",
+                   graph::kinds(ResourceKind::Image2D),
+                   Access::StorageWrite,
                    graph::kStageCompute,
-                   {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT}, false,
+                   {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT},
+                   false,
                    "direct radiance towards the camera, emission included"}};
   info.params = {
       {"shadows", graph::ParamType::Bool, 1.0, 0.0, 1.0, {}, "test the shadow maps", true},
-      {"pcf_radius", graph::ParamType::Int, 1.0, 0.0, 3.0, {},
-       "percentage-closer filter radius in texels ((2r+1)^2 taps)", true},
-      {"normal_bias", graph::ParamType::Float, 1.5, 0.0, 16.0, {},
-       "offset of the shadow lookup along the normal, in shadow-map texels", true},
-      {"background", graph::ParamType::Float, 0.0, 0.0, 1e6, {},
-       "radiance of pixels where no geometry was drawn", true},
+      {"pcf_radius",
+       graph::ParamType::Int,
+       1.0,
+       0.0,
+       3.0,
+       {},
+       "percentage-closer filter radius in texels ((2r+1)^2 taps)",
+       true},
+      {"normal_bias",
+       graph::ParamType::Float,
+       1.5,
+       0.0,
+       16.0,
+       {},
+       "offset of the shadow lookup along the normal, in shadow-map texels",
+       true},
+      {"background",
+       graph::ParamType::Float,
+       0.0,
+       0.0,
+       1e6,
+       {},
+       "radiance of pixels where no geometry was drawn",
+       true},
   };
   registry.add(std::move(info), [] { return std::make_unique<DeferredLightingPass>(); });
 }

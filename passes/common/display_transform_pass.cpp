@@ -100,16 +100,37 @@ void register_display_transform(graph::Registry& registry) {
   graph::PassTypeInfo info;
   info.type = "common.display_transform";
   info.doc = "OpenColorIO display transform (sRGB display) baked to a 3D LUT";
-  info.inputs = {{"radiance", graph::kinds(ResourceKind::Image2D), Access::Sampled,
-                  graph::kStageCompute, {}, false, "scene-referred linear radiance"}};
-  info.outputs = {{"display", graph::kinds(ResourceKind::Image2D), Access::StorageWrite,
-                   graph::kStageCompute, {VK_FORMAT_R8G8B8A8_UNORM}, false,
+  info.inputs = {{"radiance",
+                  graph::kinds(ResourceKind::Image2D),
+                  Access::Sampled,
+                  graph::kStageCompute,
+                  {},
+                  false,
+                  "scene-referred linear radiance"}};
+  info.outputs = {{"display",
+                   graph::kinds(ResourceKind::Image2D),
+                   Access::StorageWrite,
+                   graph::kStageCompute,
+                   {VK_FORMAT_R8G8B8A8_UNORM},
+                   false,
                    "display-referred sRGB-encoded colour, ready for an 8-bit file"}};
   info.params = {
-      {"view", graph::ParamType::Enum, 0.0, 0.0, 2.0, {"Standard", "ACES 1.0 SDR-video", "Raw"},
-       "OCIO view of the sRGB display (third_party_config/ocio/config.ocio)", false},
-      {"exposure", graph::ParamType::Float, 0.0, -20.0, 20.0, {},
-       "exposure in stops applied before the view transform", true},
+      {"view",
+       graph::ParamType::Enum,
+       0.0,
+       0.0,
+       2.0,
+       {"Standard", "ACES 1.0 SDR-video", "Raw"},
+       "OCIO view of the sRGB display (third_party_config/ocio/config.ocio)",
+       false},
+      {"exposure",
+       graph::ParamType::Float,
+       0.0,
+       -20.0,
+       20.0,
+       {},
+       "exposure in stops applied before the view transform",
+       true},
   };
   registry.add(std::move(info), [] { return std::make_unique<DisplayTransformPass>(); });
 }

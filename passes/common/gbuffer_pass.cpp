@@ -116,8 +116,13 @@ class GbufferPass final : public graph::Pass {
 };
 
 graph::SlotSpec color_target(const char* name, std::vector<VkFormat> formats, const char* doc) {
-  return {name, graph::kinds(ResourceKind::Image2D), Access::ColorAttachment,
-          graph::kStageFragment, std::move(formats), false, doc};
+  return {name,
+          graph::kinds(ResourceKind::Image2D),
+          Access::ColorAttachment,
+          graph::kStageFragment,
+          std::move(formats),
+          false,
+          doc};
 }
 
 }  // namespace
@@ -125,7 +130,8 @@ graph::SlotSpec color_target(const char* name, std::vector<VkFormat> formats, co
 void register_gbuffer(graph::Registry& registry) {
   graph::PassTypeInfo info;
   info.type = "common.gbuffer";
-  info.doc = "Rasterises the scene into a G-buffer (base colour, normal, material, emission, depth)";
+  info.doc =
+      "Rasterises the scene into a G-buffer (base colour, normal, material, emission, depth)";
   const std::vector<VkFormat> hdr = {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
   info.outputs = {
       color_target("base_color", {VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_R16G16B16A16_SFLOAT},
@@ -134,11 +140,22 @@ void register_gbuffer(graph::Registry& registry) {
       color_target("material", {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT},
                    "metallic, roughness, occlusion, coverage"),
       color_target("emission", hdr, "emitted radiance"),
-      {"depth", graph::kinds(ResourceKind::Image2D), Access::DepthAttachment,
-       graph::kStageFragment, {VK_FORMAT_D32_SFLOAT}, false, "depth, cleared to 1"},
+      {"depth",
+       graph::kinds(ResourceKind::Image2D),
+       Access::DepthAttachment,
+       graph::kStageFragment,
+       {VK_FORMAT_D32_SFLOAT},
+       false,
+       "depth, cleared to 1"},
   };
-  info.params = {{"cull_back_faces", graph::ParamType::Bool, 1.0, 0.0, 1.0, {},
-                  "cull back faces of single-sided materials (glTF doubleSided=false)", true}};
+  info.params = {{"cull_back_faces",
+                  graph::ParamType::Bool,
+                  1.0,
+                  0.0,
+                  1.0,
+                  {},
+                  "cull back faces of single-sided materials (glTF doubleSided=false)",
+                  true}};
   registry.add(std::move(info), [] { return std::make_unique<GbufferPass>(); });
 }
 

@@ -3,7 +3,9 @@
 #include "engine/graph/pass.hpp"
 #include "passes/common/passes.hpp"
 
-VOXGI_PLUGIN_EXPORT uint32_t voxgi_plugin_abi_version() { return voxgi::graph::kPluginAbiVersion; }
+VOXGI_PLUGIN_EXPORT uint32_t voxgi_plugin_abi_version() {
+  return voxgi::graph::kPluginAbiVersion;
+}
 
 VOXGI_PLUGIN_EXPORT void voxgi_plugin_register(voxgi::graph::Registry& registry) {
   using namespace voxgi::passes::common;

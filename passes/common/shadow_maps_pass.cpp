@@ -128,10 +128,11 @@ class ShadowMapsPass final : public graph::Pass {
 
   void execute(graph::PassContext& ctx) override {
     const graph::ResourceInfo& maps = ctx.info("maps");
-    const uint32_t light_slots = std::min<uint32_t>(maps.array_layers / kShadowFacesPerLight,
-                                                    static_cast<uint32_t>(ctx.integer("max_lights")));
+    const uint32_t light_slots = std::min<uint32_t>(
+        maps.array_layers / kShadowFacesPerLight, static_cast<uint32_t>(ctx.integer("max_lights")));
     const graph::ResourceInfo& matrices_info = ctx.info("matrices");
-    const uint32_t buffer_slots = static_cast<uint32_t>(matrices_info.buffer_size / sizeof(ShadowLight));
+    const uint32_t buffer_slots =
+        static_cast<uint32_t>(matrices_info.buffer_size / sizeof(ShadowLight));
     const uint32_t slots = std::min(light_slots, buffer_slots);
 
     const scene::Scene& scene = ctx.scene();
@@ -143,8 +144,8 @@ class ShadowMapsPass final : public graph::Pass {
     }
     VkCommandBuffer cmd = ctx.cmd();
     gpu::Buffer& matrices = *ctx.resource("matrices").buffer;
-    const VkDeviceSize bytes = std::min<VkDeviceSize>(shadows.size() * sizeof(ShadowLight),
-                                                      matrices.size());
+    const VkDeviceSize bytes =
+        std::min<VkDeviceSize>(shadows.size() * sizeof(ShadowLight), matrices.size());
     vkCmdUpdateBuffer(cmd, matrices.handle(), 0, bytes, shadows.data());
 
     const scene::GpuScene& gpu_scene = ctx.gpu_scene();
@@ -207,18 +208,39 @@ void register_shadow_maps(graph::Registry& registry) {
       "Depth maps of the scene from each light (directional: fitted orthographic, spot: "
       "perspective, point: six cube faces), six array layers per light";
   info.outputs = {
-      {"maps", graph::kinds(ResourceKind::Image2D), Access::DepthAttachment, graph::kStageFragment,
-       {VK_FORMAT_D32_SFLOAT}, false, "depth array, 6 layers per shadowed light"},
-      {"matrices", graph::kinds(ResourceKind::Buffer), Access::TransferWrite, graph::kStageTransfer,
-       {}, false, "per light: 6 view-projection matrices and info (shadow_data.glsl)"},
+      {"maps",
+       graph::kinds(ResourceKind::Image2D),
+       Access::DepthAttachment,
+       graph::kStageFragment,
+       {VK_FORMAT_D32_SFLOAT},
+       false,
+       "depth array, 6 layers per shadowed light"},
+      {"matrices",
+       graph::kinds(ResourceKind::Buffer),
+       Access::TransferWrite,
+       graph::kStageTransfer,
+       {},
+       false,
+       "per light: 6 view-projection matrices and info (shadow_data.glsl)"},
   };
   info.params = {
-      {"max_lights", graph::ParamType::Int, 4.0, 0.0, 64.0, {},
-       "lights (in scene order) that get shadow maps; limited by the image's layers / 6", true},
-      {"depth_bias", graph::ParamType::Float, 2.0, 0.0, 1000.0, {},
-       "constant depth bias in depth-buffer units", true},
-      {"slope_bias", graph::ParamType::Float, 2.0, 0.0, 100.0, {}, "slope-scaled depth bias",
+      {"max_lights",
+       graph::ParamType::Int,
+       64.0,
+       0.0,
+       64.0,
+       {},
+       "lights (in scene order) that get shadow maps; the image's layers / 6 limit it too",
        true},
+      {"depth_bias",
+       graph::ParamType::Float,
+       2.0,
+       0.0,
+       1000.0,
+       {},
+       "constant depth bias in depth-buffer units",
+       true},
+      {"slope_bias", graph::ParamType::Float, 2.0, 0.0, 100.0, {}, "slope-scaled depth bias", true},
   };
   registry.add(std::move(info), [] { return std::make_unique<ShadowMapsPass>(); });
 }

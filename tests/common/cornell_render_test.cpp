@@ -15,14 +15,17 @@ namespace {
 void expect_finite_non_negative(const RenderedImage& image, const std::string& what) {
   size_t bad = 0, negative = 0;
   for (float v : image.rgba) {
-    if (!std::isfinite(v)) ++bad;
-    else if (v < 0.0f) ++negative;
+    if (!std::isfinite(v))
+      ++bad;
+    else if (v < 0.0f)
+      ++negative;
   }
   EXPECT_EQ(bad, 0u) << what << ": NaN or Inf values";
   EXPECT_EQ(negative, 0u) << what << ": negative values";
 }
 
-glm::vec3 mean_over(const RenderedImage& image, uint32_t x0, uint32_t x1, uint32_t y0, uint32_t y1) {
+glm::vec3 mean_over(const RenderedImage& image, uint32_t x0, uint32_t x1, uint32_t y0,
+                    uint32_t y1) {
   glm::vec3 sum(0.0f);
   for (uint32_t y = y0; y < y1; ++y)
     for (uint32_t x = x0; x < x1; ++x) sum += glm::vec3(image.at(x, y));
@@ -49,7 +52,8 @@ TEST_F(CornellRenderTest, BuiltinCornellIsFiniteAndOriented) {
   // The ceiling light's emission (17, 12, 4) reaches the image unclipped (plus the specular
   // reflection of the point light just below it).
   float brightest = 0.0f;
-  for (size_t i = 0; i < linear.rgba.size(); i += 4) brightest = std::max(brightest, linear.rgba[i]);
+  for (size_t i = 0; i < linear.rgba.size(); i += 4)
+    brightest = std::max(brightest, linear.rgba[i]);
   EXPECT_GE(brightest, 16.9f);
 }
 
@@ -91,7 +95,8 @@ TEST_F(CornellRenderTest, SharedCornellBoxWithOnlyAnEmitterRenders) {
   const RenderedImage linear = harness.output("linear");
   expect_finite_non_negative(linear, "shared cornell box");
   float brightest = 0.0f;
-  for (size_t i = 0; i < linear.rgba.size(); i += 4) brightest = std::max(brightest, linear.rgba[i]);
+  for (size_t i = 0; i < linear.rgba.size(); i += 4)
+    brightest = std::max(brightest, linear.rgba[i]);
   EXPECT_NEAR(brightest, 17.0f, 0.5f) << "the emitter's radiance should show as is";
 }
 

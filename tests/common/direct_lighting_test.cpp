@@ -40,9 +40,9 @@ TEST_P(DirectLightingTest, MatchesCpuBrdfWithinOnePercent) {
       glm::vec3 l;
       const glm::vec3 e = punctual_light_at(light, *p, l);
       const glm::vec3 v = glm::normalize(eye - *p);
-      const glm::vec3 expected =
-          gltf_brdf(glm::vec3(material.base_color), material.metallic, material.roughness, n, v, l) *
-          e * std::max(glm::dot(n, l), 0.0f);
+      const glm::vec3 expected = gltf_brdf(glm::vec3(material.base_color), material.metallic,
+                                           material.roughness, n, v, l) *
+                                 e * std::max(glm::dot(n, l), 0.0f);
       const glm::vec4 got = image.at(x, y);
       for (int c = 0; c < 3; ++c) {
         const double scale = std::max<double>(expected[c], 1e-3);

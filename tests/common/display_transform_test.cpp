@@ -10,8 +10,9 @@
 namespace voxgi::test {
 namespace {
 
-class DisplayTransformTest : public GpuTest,
-                             public ::testing::WithParamInterface<std::pair<const char*, const char*>> {};
+class DisplayTransformTest
+    : public GpuTest,
+      public ::testing::WithParamInterface<std::pair<const char*, const char*>> {};
 
 TEST_P(DisplayTransformTest, MatchesOcioCpuProcessor) {
   const auto [view, exposure] = GetParam();
@@ -27,8 +28,8 @@ TEST_P(DisplayTransformTest, MatchesOcioCpuProcessor) {
   double worst = 0.0;
   for (uint32_t y = 0; y < linear.height; y += 2) {
     for (uint32_t x = 0; x < linear.width; x += 2) {
-      const glm::vec3 expected = glm::clamp(
-          ocio.apply_cpu("sRGB", view, glm::vec3(linear.at(x, y)) * scale), 0.0f, 1.0f);
+      const glm::vec3 expected =
+          glm::clamp(ocio.apply_cpu("sRGB", view, glm::vec3(linear.at(x, y)) * scale), 0.0f, 1.0f);
       const glm::vec4 got = display.at(x, y);
       for (int c = 0; c < 3; ++c) {
         const double error = std::abs(got[c] - expected[c]);
@@ -50,8 +51,10 @@ INSTANTIATE_TEST_SUITE_P(Views, DisplayTransformTest,
                                            std::make_pair("ACES 1.0 SDR-video", "0"),
                                            std::make_pair("ACES 1.0 SDR-video", "5")),
                          [](const auto& param_info) {
-                           std::string name = std::string(param_info.param.first) + "_ev" + param_info.param.second;
-                           for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                           std::string name = std::string(param_info.param.first) + "_ev" +
+                                              param_info.param.second;
+                           for (char& c : name)
+                             c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
                            return name;
                          });
 

@@ -26,9 +26,10 @@ std::optional<float> Box::hit(const glm::vec3& origin, const glm::vec3& dir, flo
 PlaneSceneProbe::PlaneSceneProbe(const scene::Scene& scene) {
   bool found_floor = false;
   for (const scene::Instance& instance : scene.instances()) {
-    const scene::Primitive& primitive =
-        scene.meshes[static_cast<size_t>(instance.mesh)].primitives[static_cast<size_t>(instance.primitive)];
-    Box box{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(-std::numeric_limits<float>::max())};
+    const scene::Primitive& primitive = scene.meshes[static_cast<size_t>(instance.mesh)]
+                                            .primitives[static_cast<size_t>(instance.primitive)];
+    Box box{glm::vec3(std::numeric_limits<float>::max()),
+            glm::vec3(-std::numeric_limits<float>::max())};
     for (const scene::Vertex& v : primitive.vertices) {
       const glm::vec3 w = glm::vec3(instance.world * glm::vec4(v.position, 1.0f));
       box.min = glm::min(box.min, w);

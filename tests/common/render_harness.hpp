@@ -19,8 +19,8 @@
 namespace voxgi::test {
 
 struct RenderSetup {
-  std::string scene = "cornell";                // a built-in name or a glTF path
-  std::string graph = "graphs/default.json";    // relative to the source tree
+  std::string scene = "cornell";              // a built-in name or a glTF path
+  std::string graph = "graphs/default.json";  // relative to the source tree
   uint32_t width = 128;
   uint32_t height = 128;
   std::map<std::string, std::string> overrides;  // --set

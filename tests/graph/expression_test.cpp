@@ -47,6 +47,20 @@ TEST(Expression, ViewportAndParameters) {
   EXPECT_DOUBLE_EQ(eval("${res} * 2"), 128);
 }
 
+TEST(Expression, MinAndMaxFollowTheScene) {
+  EXPECT_DOUBLE_EQ(eval("6 * max(1, min(scene.light_count, ${res}))"), 18);
+  EXPECT_DOUBLE_EQ(eval("max(1, scene.light_count - 5)"), 1);
+  EXPECT_DOUBLE_EQ(eval("min ( 2 + 2 , 3 )"), 3);
+  ExpressionError e = error_of("mx(1, 2)");
+  EXPECT_EQ(e.column(), 1);
+  EXPECT_STREQ(e.what(), "unknown function 'mx'");
+  EXPECT_EQ(e.hint(), "max");
+  e = error_of("min(1 2)");
+  EXPECT_EQ(e.column(), 7);
+  e = error_of("max(1, 2");
+  EXPECT_EQ(e.column(), 9);
+}
+
 TEST(Expression, Conditions) {
   EXPECT_DOUBLE_EQ(eval("scene.has_glossy && ${on}"), 1);
   EXPECT_DOUBLE_EQ(eval("scene.has_glossy && ${off}"), 0);

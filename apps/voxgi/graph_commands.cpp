@@ -12,16 +12,18 @@ namespace voxgi::cli {
 namespace {
 
 Args graph_args(const std::string& verb) {
-  return Args("voxgi graph " + verb,
-              {{"scene", true, false, "cornell|PATH",
-                "scene whose features decide `when` conditions (default cornell)"},
-               {"width", true, false, "W", "viewport width for sizes (default 1280)"},
-               {"height", true, false, "H", "viewport height for sizes (default 720)"},
-               {"set", true, true, "KEY=VALUE", "override a graph or pass parameter"},
-               {"dot", true, false, "PATH", "also write the compiled graph as Graphviz DOT"},
-               {"dump-dir", true, false, "DIR", "write every compile phase (JSON, DOT) to DIR"},
-               {"full-barriers", false, false, "", "compile with a full barrier between passes"},
-               {"help", false, false, "", "show this help"}});
+  return Args(
+      "voxgi graph " + verb,
+      {{"scene", true, false, "cornell|PATH",
+        "scene whose features decide `when` conditions (default cornell)"},
+       {"width", true, false, "W", "viewport width for sizes (default 1280)"},
+       {"height", true, false, "H", "viewport height for sizes (default 720)"},
+       {"set", true, true, "KEY=VALUE", "override a graph or pass parameter"},
+       {"dot", true, false, "PATH", "also write the compiled graph as Graphviz DOT"},
+       {"dump-dir", true, false, "DIR", "write every compile phase (JSON, DOT) to DIR"},
+       {"full-barriers", false, false, "", "compile with a full barrier between passes"},
+       {"no-memory-sharing", false, false, "", "give every transient resource its own memory"},
+       {"help", false, false, "", "show this help"}});
 }
 
 }  // namespace
@@ -51,6 +53,7 @@ int graph_command(const std::vector<std::string>& argv) {
   options.scene_features = scene.features().as_map();
   options.overrides = parse_overrides(args.values("set"));
   options.full_barriers = args.flag("full-barriers");
+  options.alias_transients = !args.flag("no-memory-sharing");
   const graph::CompiledGraph compiled = graph::compile(desc, registry, options);
 
   if (const std::optional<std::string> dump_dir = args.value("dump-dir")) {

@@ -44,6 +44,7 @@ Args render_args() {
        {"validation", false, false, "",
         "enable the Vulkan validation layer; messages fail the run"},
        {"full-barriers", false, false, "", "a full barrier between passes (to rule out sync bugs)"},
+       {"no-memory-sharing", false, false, "", "give every transient resource its own memory"},
        {"dump-dir", true, false, "DIR", "write every compile phase (JSON, DOT) to DIR"},
        {"help", false, false, "", "show this help"}});
 }
@@ -100,8 +101,9 @@ int render_command(const std::vector<std::string>& argv) {
   const graph::GraphDesc desc =
       graph::load_graph_file(resolve_graph_path(args.value_or("graph", "graphs/default.json")));
   scene::Scene scene = load_scene(args.value_or("scene", "cornell"));
+  // The loader's warnings name only the field; the scene file completes the location.
   for (const std::string& warning : scene.warnings)
-    std::cerr << "voxgi: warning: " << warning << "\n";
+    std::cerr << "voxgi: warning: " << scene.source << ": " << warning << "\n";
   const scene::Camera camera = choose_camera(scene, args.value_or("camera", ""));
 
   graph::Registry registry;
@@ -112,6 +114,7 @@ int render_command(const std::vector<std::string>& argv) {
   options.scene_features = scene.features().as_map();
   options.overrides = overrides;
   options.full_barriers = args.flag("full-barriers");
+  options.alias_transients = !args.flag("no-memory-sharing");
   const graph::CompiledGraph compiled = graph::compile(desc, registry, options);
   if (const std::optional<std::string> dump_dir = args.value("dump-dir")) {
     graph::dump_phases(desc, compiled, *dump_dir);

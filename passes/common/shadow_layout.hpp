@@ -9,14 +9,17 @@ namespace voxgi::passes::common {
 
 inline constexpr uint32_t kShadowFacesPerLight = 6;
 
+// Matrices are relative to `origin` (clip = view_proj * (p - origin)): a view matrix that
+// carries a large translation loses float precision for scenes far from the world origin.
 struct ShadowLight {
   glm::mat4 view_proj[kShadowFacesPerLight];
+  glm::vec4 origin;  // xyz: the projection centre in world space
   // x: faces rendered (0 = no shadow, 1, or 6 for a point light)
   // y: world size of one texel (orthographic) or per unit distance (perspective)
   // z: 1 for perspective projections, 0 for orthographic
   // w: unused
   glm::vec4 info;
 };
-static_assert(sizeof(ShadowLight) == 6 * 64 + 16);
+static_assert(sizeof(ShadowLight) == 6 * 64 + 32);
 
 }  // namespace voxgi::passes::common

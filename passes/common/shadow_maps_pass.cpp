@@ -57,17 +57,19 @@ ShadowLight shadow_for(const scene::Light& light, const SceneSphere& sphere, flo
   if (light.type == scene::LightType::Directional) {
     const float r = sphere.radius;
     const glm::vec3 eye = sphere.center - dir * (2.0f * r);
-    const glm::mat4 view = glm::lookAt(eye, sphere.center, up_for(dir));
+    const glm::mat4 view = glm::lookAt(glm::vec3(0.0f), dir, up_for(dir));
     const glm::mat4 proj = glm::ortho(-r, r, -r, r, r * 0.5f, r * 3.5f);
     shadow.view_proj[0] = proj * view;
+    shadow.origin = glm::vec4(eye, 1.0f);
     shadow.info = {1.0f, 2.0f * r / resolution, 0.0f, 0.0f};
     return shadow;
   }
   float znear = 0.0f, zfar = 0.0f;
   perspective_range(sphere, light.position, znear, zfar);
+  shadow.origin = glm::vec4(light.position, 1.0f);
   if (light.type == scene::LightType::Spot) {
     const float fov = std::min(2.0f * light.outer_cone + 0.05f, glm::radians(170.0f));
-    const glm::mat4 view = glm::lookAt(light.position, light.position + dir, up_for(dir));
+    const glm::mat4 view = glm::lookAt(glm::vec3(0.0f), dir, up_for(dir));
     shadow.view_proj[0] = glm::perspective(fov, 1.0f, znear, zfar) * view;
     shadow.info = {1.0f, 2.0f * std::tan(0.5f * fov) / resolution, 1.0f, 0.0f};
     return shadow;
@@ -82,15 +84,15 @@ ShadowLight shadow_for(const scene::Light& light, const SceneSphere& sphere, flo
   const float fov = glm::radians(92.0f);
   const glm::mat4 proj = glm::perspective(fov, 1.0f, znear, zfar);
   for (int face = 0; face < 6; ++face) {
-    shadow.view_proj[face] =
-        proj * glm::lookAt(light.position, light.position + kFaceDirs[face], kFaceUps[face]);
+    shadow.view_proj[face] = proj * glm::lookAt(glm::vec3(0.0f), kFaceDirs[face], kFaceUps[face]);
   }
   shadow.info = {6.0f, 2.0f * std::tan(0.5f * fov) / resolution, 1.0f, 0.0f};
   return shadow;
 }
 
 struct ShadowPush {
-  glm::mat4 view_proj;
+  glm::mat4 view_proj;  // relative to origin
+  glm::vec4 origin;
 };
 
 class ShadowMapsPass final : public graph::Pass {
@@ -155,14 +157,15 @@ class ShadowMapsPass final : public graph::Pass {
       const uint32_t faces = static_cast<uint32_t>(shadows[light].info.x);
       for (uint32_t face = 0; face < faces; ++face) {
         render_layer(ctx, gpu_scene, image.layer_view(light * kShadowFacesPerLight + face), layout,
-                     maps.extent, shadows[light].view_proj[face]);
+                     maps.extent,
+                     ShadowPush{shadows[light].view_proj[face], shadows[light].origin});
       }
     }
   }
 
  private:
   void render_layer(graph::PassContext& ctx, const scene::GpuScene& scene, VkImageView view,
-                    VkImageLayout layout, VkExtent3D extent, const glm::mat4& view_proj) {
+                    VkImageLayout layout, VkExtent3D extent, const ShadowPush& push) {
     VkCommandBuffer cmd = ctx.cmd();
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = view;
@@ -183,7 +186,7 @@ class ShadowMapsPass final : public graph::Pass {
       VkDescriptorSet scene_set = scene.descriptor_set();
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_->layout(), 1, 1,
                               &scene_set, 0, nullptr);
-      pipeline_->push_constants(cmd, ShadowPush{view_proj});
+      pipeline_->push_constants(cmd, push);
       VkDeviceSize offset = 0;
       VkBuffer vertices = scene.vertices().handle();
       vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);

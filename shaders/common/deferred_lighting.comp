@@ -38,15 +38,20 @@ layout(push_constant) uniform Push {
 
 #if HAS_SHADOWS
 // Fraction of the light that reaches p (1 = lit), percentage-closer filtered.
-float shadow_visibility(uint light_index, vec3 light_position, vec3 p, vec3 n, float distance_to_light) {
+float shadow_visibility(uint light_index, vec3 p, vec3 n, float distance_to_light) {
   if (pc.shadows_enabled == 0u || light_index >= pc.shadow_slots) return 1.0;
   ShadowLight s = shadow_lights[light_index];
   uint faces = uint(s.info.x + 0.5);
   if (faces == 0u) return 1.0;
   float texel_world = s.info.z > 0.5 ? s.info.y * distance_to_light : s.info.y;
-  vec3 biased = p + n * (pc.normal_bias * texel_world);
-  uint face = faces == 6u ? shadow_cube_face(biased - light_position) : 0u;
-  vec4 clip = s.view_proj[face] * vec4(biased, 1.0);
+  // Never offset by less than a few float32 steps of the world position: far from the origin
+  // that spacing (|p| * 2^-23) exceeds a texel and would make every surface shadow itself.
+  vec3 a = abs(p);
+  float position_step = max(a.x, max(a.y, a.z)) * 1.2e-7;
+  vec3 biased = p + n * max(pc.normal_bias * texel_world, 8.0 * position_step);
+  vec3 relative = biased - s.origin.xyz;
+  uint face = faces == 6u ? shadow_cube_face(relative) : 0u;
+  vec4 clip = s.view_proj[face] * vec4(relative, 1.0);
   if (clip.w <= 0.0) return 1.0;
   vec3 ndc = clip.xyz / clip.w;
   if (any(greaterThan(abs(ndc.xy), vec2(1.0))) || ndc.z > 1.0) return 1.0;
@@ -74,7 +79,7 @@ void main() {
     return;
   }
   vec2 uv = (vec2(pixel) + 0.5) / vec2(pc.size);
-  vec3 p = reconstruct_world_position(frame.inv_view_proj, uv, depth);
+  vec3 p = reconstruct_world_position(frame.inv_proj, frame.inv_view, uv, depth);
   vec4 normal_roughness = texelFetch(g_normal, pixel, 0);
   vec3 n = safe_normalize(normal_roughness.xyz, vec3(0.0, 1.0, 0.0));
   vec4 material = texelFetch(g_material, pixel, 0);
@@ -113,7 +118,7 @@ void main() {
     if (attenuation <= 0.0 || dot(n, l) <= 0.0) continue;
     float visibility = 1.0;
 #if HAS_SHADOWS
-    visibility = shadow_visibility(i, light.position, p, n, distance_to_light);
+    visibility = shadow_visibility(i, p, n, distance_to_light);
 #endif
     radiance += gltf_brdf_cos(surface, n, v, l) * light.radiance * (attenuation * visibility);
   }

@@ -2,7 +2,8 @@
 #define VOXGI_SHADOW_DATA_GLSL
 // Mirrors passes/common/shadow_layout.hpp.
 struct ShadowLight {
-  mat4 view_proj[6];
+  mat4 view_proj[6];  // relative to origin: clip = view_proj * (p - origin)
+  vec4 origin;
   vec4 info;  // faces, texel size, perspective, unused
 };
 

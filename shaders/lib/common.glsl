@@ -17,11 +17,12 @@ vec3 safe_normalize(vec3 v, vec3 fallback) {
   return len2 > 1e-20 ? v * inversesqrt(len2) : fallback;
 }
 
-// World position of a pixel from its depth (Vulkan clip space, depth 0..1).
-vec3 reconstruct_world_position(mat4 inv_view_proj, vec2 uv, float depth) {
-  vec4 clip = vec4(uv * 2.0 - 1.0, depth, 1.0);
-  vec4 world = inv_view_proj * clip;
-  return world.xyz / world.w;
+// World position of a pixel from its depth (Vulkan clip space, depth 0..1). Goes through view
+// space (inverse projection, then inverse view) rather than one inverse view-projection: that
+// product loses float precision when the scene is far from the origin.
+vec3 reconstruct_world_position(mat4 inv_proj, mat4 inv_view, vec2 uv, float depth) {
+  vec4 view = inv_proj * vec4(uv * 2.0 - 1.0, depth, 1.0);
+  return (inv_view * vec4(view.xyz / view.w, 1.0)).xyz;
 }
 
 #endif

@@ -13,8 +13,12 @@ namespace voxgi::test {
 RenderHarness::RenderHarness(const RenderSetup& setup) : setup_(setup) {
   const std::filesystem::path scene_path(setup.scene);
   const std::string ext = scene_path.extension().string();
-  scene_ = (ext == ".gltf" || ext == ".glb") ? scene::load_gltf(scene_path)
-                                             : scene::make_builtin_scene(setup.scene);
+  if (setup.scene_data) {
+    scene_ = *setup.scene_data;
+  } else {
+    scene_ = (ext == ".gltf" || ext == ".glb") ? scene::load_gltf(scene_path)
+                                               : scene::make_builtin_scene(setup.scene);
+  }
   scene_.update_transforms();
   camera_ = scene_.cameras.empty() ? scene::default_camera(scene_) : scene_.cameras.front();
 

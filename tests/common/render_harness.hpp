@@ -6,6 +6,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ namespace voxgi::test {
 
 struct RenderSetup {
   std::string scene = "cornell";              // a built-in name or a glTF path
+  std::optional<scene::Scene> scene_data;     // a scene made by the test (wins over `scene`)
   std::string graph = "graphs/default.json";  // relative to the source tree
   uint32_t width = 128;
   uint32_t height = 128;

@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
     if (args[0] == "passes") return passes_command(rest);
     if (args[0] == "devices") return devices_command(rest);
     std::vector<std::string> commands = {"render", "graph", "passes", "devices"};
-    std::string message = "voxgi: unknown command '" + args[0] + "'";
+    std::string message = "unknown command '" + args[0] + "'";
     if (std::string close = closest_match(args[0], commands); !close.empty()) {
       message += " (did you mean '" + close + "'?)";
     }

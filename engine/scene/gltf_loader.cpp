@@ -199,10 +199,26 @@ class Loader {
       fail("file", "is a directory, expected a .gltf or .glb file");
     std::ifstream file(path_, std::ios::binary);
     if (!file) fail("file", "cannot be opened for reading");
-    char magic[4] = {};
-    file.read(magic, 4);
-    const bool binary = file.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0;
+    char header[12] = {};
+    file.read(header, sizeof header);
+    const std::streamsize header_bytes = file.gcount();
+    const bool binary = header_bytes >= 4 && std::memcmp(header, "glTF", 4) == 0;
     file.close();
+    // A cut-off download or copy is the usual broken GLB; tinygltf only says "Invalid glTF
+    // binary", so compare the file with the length its header declares.
+    if (binary) {
+      const uintmax_t size = std::filesystem::file_size(path_, ec);
+      if (header_bytes < static_cast<std::streamsize>(sizeof header)) {
+        fail("glb", "truncated: " + std::to_string(header_bytes) +
+                        " bytes, shorter than the 12-byte GLB header");
+      }
+      uint32_t declared = 0;
+      std::memcpy(&declared, header + 8, sizeof declared);
+      if (!ec && size < declared) {
+        fail("glb", "truncated: the header declares " + std::to_string(declared) +
+                        " bytes but the file has " + std::to_string(size));
+      }
+    }
 
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(decode_image, nullptr);

@@ -1,0 +1,249 @@
+// `voxgi` runs that need no Vulkan device: bad input must end in one message that names the file
+// and the field or option, with exit code 2 for a wrong command line and 1 for everything else.
+// Each run fails before the device is opened ("voxgi: device:" is printed once it is).
+
+#include <regex>
+
+#include "tests/apps/voxgi_cli_fixture.hpp"
+#include "tests/scene/gltf_writer.hpp"
+
+namespace voxgi::test {
+namespace {
+
+constexpr int kUsageError = 2;
+constexpr int kError = 1;
+
+// A run that must not get as far as rendering.
+::testing::AssertionResult failed_before_rendering(const ProcessResult& result) {
+  if (contains(result.err, "voxgi: device:") || contains(result.err, "voxgi: wrote")) {
+    return ::testing::AssertionFailure() << "expected no rendering\n" << result.describe();
+  }
+  return ::testing::AssertionSuccess();
+}
+
+// ---- scenes -------------------------------------------------------------------------------
+
+TEST_F(VoxgiCli, MissingSceneFileIsNamed) {
+  const ProcessResult r = render({"--scene", "missing.gltf", "--out", "out/image"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(r, {"voxgi: error: missing.gltf: file: does not exist"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out" / "image.png"));
+}
+
+TEST_F(VoxgiCli, CorruptGltfIsNamedWithTheParseError) {
+  write_text(dir_ / "corrupt.gltf", "{\n  \"asset\": { \"version\": \"2.0\" },\n  \"scenes\": [\n");
+  const ProcessResult r = render({"--scene", "corrupt.gltf"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(r, {"corrupt.gltf: gltf: not a valid glTF 2.0 file", "parse error"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+TEST_F(VoxgiCli, TruncatedGlbIsNamedAsTruncated) {
+  GltfWriter writer;
+  writer.add_mesh_node(writer.triangle());
+  const std::vector<uint8_t> bytes = writer.glb_bytes();
+  writer.write_glb(dir_ / "whole.glb");
+  // The complete file loads (graph check reads the scene without a device), so the failures
+  // below come from the cut alone.
+  const ProcessResult whole =
+      voxgi({"graph", "check", "graphs/default.json", "--scene", "whole.glb"});
+  EXPECT_TRUE(exited_with(whole, 0));
+
+  for (const size_t keep : {bytes.size() / 2, size_t(8)}) {
+    const std::string name = "cut-" + std::to_string(keep) + ".glb";
+    std::ofstream(dir_ / name, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(keep));
+    const ProcessResult r = render({"--scene", name});
+    EXPECT_TRUE(exited_with(r, kError));
+    EXPECT_TRUE(stderr_has(r, {name + ": glb: truncated"}));
+    EXPECT_TRUE(failed_before_rendering(r));
+  }
+}
+
+TEST_F(VoxgiCli, UnknownBuiltinSceneListsTheBuiltinScenes) {
+  const ProcessResult r = render({"--scene", "cornel"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(
+      r, {"builtin:cornel: name: unknown built-in scene", "cornell", "plane-point", "empty"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+// ---- graph files --------------------------------------------------------------------------
+
+TEST_F(VoxgiCli, GraphSyntaxErrorHasFileLineAndColumn) {
+  write_text(dir_ / "syntax.json", "{\n  \"name\": \"syntax\",\n  \"passes\": [ oops ]\n}\n");
+  const ProcessResult r = render({"--graph", "syntax.json"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(r, {"syntax.json:3:15: error:"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+TEST_F(VoxgiCli, UnknownPassTypeSuggestsTheClosestType) {
+  std::string text = default_graph_text();
+  const size_t at = text.find("\"common.gbuffer\"");
+  ASSERT_NE(at, std::string::npos) << "graphs/default.json no longer uses common.gbuffer";
+  text.replace(at, 16, "\"common.gbufer\"");
+  write_text(dir_ / "typo.json", text);
+
+  const ProcessResult r = render({"--graph", "typo.json"});
+  EXPECT_TRUE(exited_with(r, kError));
+  const std::string location = "typo.json:" + std::to_string(line_of(text, "common.gbufer")) + ":";
+  EXPECT_TRUE(stderr_has(r, {location, "field 'type'", "unknown pass type 'common.gbufer'",
+                             "did you mean 'common.gbuffer'?"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+TEST_F(VoxgiCli, GraphCheckAcceptsTheDefaultGraph) {
+  // A relative path that is not under the working directory resolves into the source tree.
+  const ProcessResult r = voxgi({"graph", "check", "graphs/default.json"});
+  EXPECT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(stdout_has(r, {"default.json: ok"}));
+}
+
+TEST_F(VoxgiCli, GraphCheckRejectsABrokenCopyNamingIt) {
+  const std::string text = default_graph_text();
+  write_text(dir_ / "broken.json", text.substr(0, text.size() / 2));
+  const ProcessResult r = voxgi({"graph", "check", "broken.json"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(std::regex_search(r.err, std::regex(R"(broken\.json:\d+:\d+: error: )")))
+      << r.describe();
+}
+
+// ---- --set --------------------------------------------------------------------------------
+
+// --set keys are checked against the graph, in the compiler, so they fail like a graph error.
+TEST_F(VoxgiCli, UnknownSetKeyIsNamedWithASuggestion) {
+  const ProcessResult r = render({"--set", "lighting.pcf_radios=2"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(
+      stderr_has(r, {"--set lighting.pcf_radios=2", "unknown --set key 'lighting.pcf_radios'",
+                     "did you mean 'lighting.pcf_radius'?"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+TEST_F(VoxgiCli, OutOfRangeSetValueNamesPassFieldAndRange) {
+  const ProcessResult r = render({"--set", "lighting.pcf_radius=99"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(r, {"--set lighting.pcf_radius=99", "pass 'lighting'",
+                             "field 'lighting.pcf_radius'", "value 99 is out of range ["}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+TEST_F(VoxgiCli, SetWithoutEqualsIsAUsageError) {
+  const ProcessResult r = render({"--set", "lighting.pcf_radius"});
+  EXPECT_TRUE(exited_with(r, kUsageError));
+  EXPECT_TRUE(stderr_has(r, {"--set 'lighting.pcf_radius'", "expected KEY=VALUE", "usage:"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+// ---- options ------------------------------------------------------------------------------
+
+TEST_F(VoxgiCli, UnknownOptionSuggestsTheClosestOption) {
+  const ProcessResult r = voxgi({"render", "--widht", "64"});
+  EXPECT_TRUE(exited_with(r, kUsageError));
+  EXPECT_TRUE(stderr_has(r, {"voxgi render: unknown option '--widht'", "did you mean '--width'?"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+TEST_F(VoxgiCli, BadWidthIsAUsageError) {
+  for (const std::string width : {"abc", "0", "64px", "99999"}) {
+    const ProcessResult r = voxgi({"render", "--width", width, "--height", "64"});
+    EXPECT_TRUE(exited_with(r, kUsageError));
+    EXPECT_TRUE(
+        stderr_has(r, {"option '--width'", "expected an integer in [1, ", "'" + width + "'"}));
+    EXPECT_TRUE(failed_before_rendering(r));
+  }
+}
+
+TEST_F(VoxgiCli, UnknownCommandSuggestsTheClosestCommand) {
+  const ProcessResult r = voxgi({"rendr"});
+  EXPECT_TRUE(exited_with(r, kUsageError));
+  EXPECT_TRUE(stderr_has(r, {"unknown command 'rendr'", "did you mean 'render'?"}));
+}
+
+// ---- output paths -------------------------------------------------------------------------
+
+TEST_F(VoxgiCli, OutputBelowARegularFileFailsBeforeRendering) {
+  write_text(dir_ / "blocker", "a file where a folder is needed\n");
+  const ProcessResult r = render({"--out", "blocker/sub/image"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(r, {"--out", "blocker/sub"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+  EXPECT_EQ(read_text(dir_ / "blocker"), "a file where a folder is needed\n");
+}
+
+TEST_F(VoxgiCli, TimingsBelowARegularFileFailsBeforeRendering) {
+  write_text(dir_ / "blocker", "");
+  const ProcessResult r = render({"--out", "out/image", "--timings", "blocker/t.json"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(r, {"--timings", "blocker"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+// ---- no Vulkan driver ---------------------------------------------------------------------
+
+TEST_F(VoxgiCli, NoVulkanDriverSaysHowToInstallOne) {
+  // Both variables: older loaders read VK_ICD_FILENAMES, newer ones VK_DRIVER_FILES.
+  ProcessOptions options;
+  const std::string nowhere = (dir_ / "no-such-driver.json").string();
+  options.env["VK_ICD_FILENAMES"] = nowhere;
+  options.env["VK_DRIVER_FILES"] = nowhere;
+  options.env["VK_ADD_DRIVER_FILES"] = std::nullopt;
+
+  const ProcessResult r = render({"--out", "out/image"}, options);
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(r, {"voxgi: error:", "no Vulkan", "install mesa-vulkan-drivers"}));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out" / "image.png"));
+
+  const ProcessResult devices = voxgi({"devices"}, options);
+  EXPECT_TRUE(exited_with(devices, kError));
+  EXPECT_TRUE(contains(devices.out + devices.err, "install mesa-vulkan-drivers"))
+      << devices.describe();
+}
+
+// ---- passes and graph explain -------------------------------------------------------------
+
+TEST_F(VoxgiCli, PassesListsTheCommonFamily) {
+  const ProcessResult r = voxgi({"passes"});
+  EXPECT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(stdout_has(r, {"common.gbuffer", "common.shadow_maps", "common.deferred_lighting",
+                             "common.display_transform", "pcf_radius (int"}));
+}
+
+TEST_F(VoxgiCli, PassesMarkdownPrintsTables) {
+  const ProcessResult r = voxgi({"passes", "--markdown"});
+  EXPECT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(stdout_has(
+      r, {"### `common.gbuffer`", "| parameter | type | default | range | live | description |",
+          "|---|---|---|---|---|---|", "| `pcf_radius` | int |"}));
+}
+
+TEST_F(VoxgiCli, GraphExplainPrintsTheSchedule) {
+  const ProcessResult r = voxgi({"graph", "explain", "graphs/default.json", "--scene", "cornell"});
+  EXPECT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(
+      stdout_has(r, {"scene: builtin:cornell", "schedule (", "1. gbuffer (common.gbuffer)",
+                     "writes ", "barrier ", "culled (", "outputs:", "display -> ", "resources:"}));
+}
+
+TEST_F(VoxgiCli, GraphExplainShowsShadowsCulledForTheSharedCornellBox) {
+  const std::filesystem::path scene =
+      std::filesystem::path(VOXGI_SHARED_DIR) / "scenes" / "cornell-box" / "cornell-box.gltf";
+  if (!std::filesystem::exists(scene)) {
+    GTEST_SKIP() << "shared scene not found: " << scene.string();
+  }
+  // Its only light is an emissive quad: no punctual lights, so no shadow maps.
+  const ProcessResult r =
+      voxgi({"graph", "explain", "graphs/default.json", "--scene", scene.string()});
+  EXPECT_TRUE(exited_with(r, 0));
+  const size_t culled_at = std::min(r.out.find("culled ("), r.out.size());
+  const std::string schedule = r.out.substr(0, culled_at), culled = r.out.substr(culled_at);
+  EXPECT_FALSE(contains(schedule, ". shadows (")) << r.describe();
+  EXPECT_TRUE(contains(culled, "shadows (common.shadow_maps): when 'scene.has_lights' is false"))
+      << r.describe();
+  EXPECT_TRUE(stdout_has(r, {"cornell-box.gltf"}));
+}
+
+}  // namespace
+}  // namespace voxgi::test

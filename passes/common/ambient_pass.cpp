@@ -66,21 +66,10 @@ void register_ambient(graph::Registry& registry) {
   graph::PassTypeInfo info;
   info.type = "common.ambient";
   info.doc = "Constant ambient light (uniform environment radiance), the placeholder for GI";
-  auto input = [](const char* name, const char* doc) {
-    return graph::SlotSpec{
-        name, graph::kinds(ResourceKind::Image2D), Access::Sampled, graph::kStageCompute, {}, false,
-        doc};
-  };
-  info.inputs = {input("base_color", "G-buffer base colour"),
-                 input("material", "G-buffer metallic, roughness, occlusion, coverage"),
-                 input("depth", "G-buffer depth")};
-  info.outputs = {{"radiance",
-                   graph::kinds(ResourceKind::Image2D),
-                   Access::StorageWrite,
-                   graph::kStageCompute,
-                   {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT},
-                   false,
-                   "ambient radiance reflected towards the camera"}};
+  info.inputs = {sampled_input("base_color", "G-buffer base colour"),
+                 sampled_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
+                 sampled_input("depth", "G-buffer depth")};
+  info.outputs = {radiance_output("radiance", "ambient radiance reflected towards the camera")};
   info.params = {
       {"enabled", graph::ParamType::Bool, 1.0, 0.0, 1.0, {}, "switch the ambient term off", true},
       {"radiance",

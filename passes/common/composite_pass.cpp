@@ -74,26 +74,12 @@ void register_composite(graph::Registry& registry) {
   graph::PassTypeInfo info;
   info.type = "common.composite";
   info.doc = "Sums direct and indirect radiance; ambient occlusion scales the indirect terms";
-  auto input = [](const char* name, bool optional, const char* doc) {
-    return graph::SlotSpec{name,
-                           graph::kinds(ResourceKind::Image2D),
-                           Access::Sampled,
-                           graph::kStageCompute,
-                           {},
-                           optional,
-                           doc};
-  };
-  info.inputs = {input("direct", false, "direct radiance (emission included)"),
-                 input("indirect_diffuse", true, "indirect diffuse radiance"),
-                 input("indirect_specular", true, "indirect specular radiance"),
-                 input("ambient_occlusion", true, "ambient occlusion in r (1 = unoccluded)")};
-  info.outputs = {{"radiance",
-                   graph::kinds(ResourceKind::Image2D),
-                   Access::StorageWrite,
-                   graph::kStageCompute,
-                   {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT},
-                   false,
-                   "scene-referred linear radiance"}};
+  info.inputs = {
+      sampled_input("direct", "direct radiance (emission included)", false),
+      sampled_input("indirect_diffuse", "indirect diffuse radiance", true),
+      sampled_input("indirect_specular", "indirect specular radiance", true),
+      sampled_input("ambient_occlusion", "ambient occlusion in r (1 = unoccluded)", true)};
+  info.outputs = {radiance_output("radiance", "scene-referred linear radiance")};
   info.params = {{"indirect_scale",
                   graph::ParamType::Float,
                   1.0,

@@ -99,12 +99,6 @@ class DeferredLightingPass final : public graph::Pass {
   std::optional<gpu::ComputePipeline> pipeline_;
 };
 
-graph::SlotSpec gbuffer_input(const char* name, const char* doc) {
-  return {
-      name, graph::kinds(ResourceKind::Image2D), Access::Sampled, graph::kStageCompute, {}, false,
-      doc};
-}
-
 }  // namespace
 
 void register_deferred_lighting(graph::Registry& registry) {
@@ -114,24 +108,13 @@ void register_deferred_lighting(graph::Registry& registry) {
       "Direct lighting of the G-buffer by all punctual lights with the glTF BRDF, shadow maps "
       "(PCF) and emission";
   info.inputs = {
-      gbuffer_input("base_color", "G-buffer base colour"),
-      gbuffer_input("normal", "G-buffer normal + roughness"),
-      gbuffer_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
-      gbuffer_input("emission", "G-buffer emission"),
-      {"depth",
-       graph::kinds(ResourceKind::Image2D),
-       Access::Sampled,
-       graph::kStageCompute,
-       {VK_FORMAT_D32_SFLOAT},
-       false,
-       "G-buffer depth"},
-      {"shadow_maps",
-       graph::kinds(ResourceKind::Image2D),
-       Access::Sampled,
-       graph::kStageCompute,
-       {VK_FORMAT_D32_SFLOAT},
-       true,
-       "from common.shadow_maps; unbound: no shadows"},
+      sampled_input("base_color", "G-buffer base colour"),
+      sampled_input("normal", "G-buffer normal + roughness"),
+      sampled_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
+      sampled_input("emission", "G-buffer emission"),
+      sampled_input("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}),
+      sampled_input("shadow_maps", "from common.shadow_maps; unbound: no shadows", true,
+                    {VK_FORMAT_D32_SFLOAT}),
       {"shadow_matrices",
        graph::kinds(ResourceKind::Buffer),
        Access::StorageRead,
@@ -140,13 +123,8 @@ void register_deferred_lighting(graph::Registry& registry) {
        true,
        "from common.shadow_maps"},
   };
-  info.outputs = {{"radiance",
-                   graph::kinds(ResourceKind::Image2D),
-                   Access::StorageWrite,
-                   graph::kStageCompute,
-                   {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT},
-                   false,
-                   "direct radiance towards the camera, emission included"}};
+  info.outputs = {
+      radiance_output("radiance", "direct radiance towards the camera, emission included")};
   info.params = {
       {"shadows", graph::ParamType::Bool, 1.0, 0.0, 1.0, {}, "test the shadow maps", true},
       {"pcf_radius",

@@ -32,6 +32,27 @@ void bind_scene_set(const graph::PassContext& ctx, const gpu::ComputePipeline& p
                           0, nullptr);
 }
 
+graph::SlotSpec sampled_input(const char* name, const char* doc, bool optional,
+                              std::vector<VkFormat> formats) {
+  return {name,
+          graph::kinds(graph::ResourceKind::Image2D),
+          graph::Access::Sampled,
+          graph::kStageCompute,
+          std::move(formats),
+          optional,
+          doc};
+}
+
+graph::SlotSpec radiance_output(const char* name, const char* doc) {
+  return {name,
+          graph::kinds(graph::ResourceKind::Image2D),
+          graph::Access::StorageWrite,
+          graph::kStageCompute,
+          {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT},
+          false,
+          doc};
+}
+
 void dispatch_over_image(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
   vkCmdDispatch(cmd, (width + kTile - 1) / kTile, (height + kTile - 1) / kTile, 1);
 }

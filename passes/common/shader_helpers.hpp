@@ -24,6 +24,13 @@ gpu::ComputePipeline make_common_compute(const graph::PassContext& ctx, const st
 // Binds the scene's descriptor set as set 1 of a compute pipeline.
 void bind_scene_set(const graph::PassContext& ctx, const gpu::ComputePipeline& pipeline);
 
+// Slot declarations the family's compute passes share.
+// A 2D image read through a sampler in compute (any format unless `formats` is given).
+graph::SlotSpec sampled_input(const char* name, const char* doc, bool optional = false,
+                              std::vector<VkFormat> formats = {});
+// A 2D HDR radiance image (rgba16f or rgba32f) written as a storage image in compute.
+graph::SlotSpec radiance_output(const char* name, const char* doc);
+
 // Workgroup size of the family's 2D compute shaders (local_size_x = local_size_y).
 inline constexpr uint32_t kTile = 8;
 

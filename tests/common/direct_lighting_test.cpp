@@ -60,12 +60,9 @@ TEST_P(DirectLightingTest, MatchesCpuBrdfWithinOnePercent) {
   std::cout << GetParam() << ": " << compared << " pixels, worst relative error " << worst << "\n";
 }
 
-INSTANTIATE_TEST_SUITE_P(PunctualLights, DirectLightingTest,
-                         ::testing::Values("plane-point", "plane-spot", "plane-directional"),
+INSTANTIATE_TEST_SUITE_P(PunctualLights, DirectLightingTest, ::testing::ValuesIn(kPlaneScenes),
                          [](const auto& param_info) {
-                           std::string name = param_info.param;
-                           for (char& c : name) c = c == '-' ? '_' : c;
-                           return name;
+                           return plane_scene_test_name(param_info.param);
                          });
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/scene/scene.hpp"
@@ -19,6 +20,14 @@ struct Box {
   // Smallest t in [t0, t1] where the ray enters the box, if it does.
   std::optional<float> hit(const glm::vec3& origin, const glm::vec3& dir, float t0, float t1) const;
 };
+
+// The built-in plane scenes, one per punctual light type, and a test-name-safe form of them.
+inline const char* const kPlaneScenes[] = {"plane-point", "plane-spot", "plane-directional"};
+inline std::string plane_scene_test_name(const char* scene) {
+  std::string name = scene;
+  for (char& c : name) c = c == '-' ? '_' : c;
+  return name;
+}
 
 class PlaneSceneProbe {
  public:

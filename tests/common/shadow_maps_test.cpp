@@ -74,12 +74,9 @@ TEST_P(ShadowMapsTest, SwitchingShadowsOffLightsTheShadow) {
   EXPECT_GT(checked, 20);
 }
 
-INSTANTIATE_TEST_SUITE_P(PunctualLights, ShadowMapsTest,
-                         ::testing::Values("plane-point", "plane-spot", "plane-directional"),
+INSTANTIATE_TEST_SUITE_P(PunctualLights, ShadowMapsTest, ::testing::ValuesIn(kPlaneScenes),
                          [](const auto& param_info) {
-                           std::string name = param_info.param;
-                           for (char& c : name) c = c == '-' ? '_' : c;
-                           return name;
+                           return plane_scene_test_name(param_info.param);
                          });
 
 }  // namespace

@@ -12,18 +12,6 @@
 namespace voxgi::test {
 namespace {
 
-void expect_finite_non_negative(const RenderedImage& image, const std::string& what) {
-  size_t bad = 0, negative = 0;
-  for (float v : image.rgba) {
-    if (!std::isfinite(v))
-      ++bad;
-    else if (v < 0.0f)
-      ++negative;
-  }
-  EXPECT_EQ(bad, 0u) << what << ": NaN or Inf values";
-  EXPECT_EQ(negative, 0u) << what << ": negative values";
-}
-
 glm::vec3 mean_over(const RenderedImage& image, uint32_t x0, uint32_t x1, uint32_t y0,
                     uint32_t y1) {
   glm::vec3 sum(0.0f);

@@ -144,15 +144,7 @@ TEST_P(HardCasesTest, OutputsStayFiniteAndNonNegative) {
   harness.render(2);
   for (const char* output : {"linear", "display"}) {
     const RenderedImage image = harness.output(output);
-    size_t bad = 0, negative = 0;
-    for (float v : image.rgba) {
-      if (!std::isfinite(v))
-        ++bad;
-      else if (v < 0.0f)
-        ++negative;
-    }
-    EXPECT_EQ(bad, 0u) << GetParam().name << ": NaN/Inf in " << output;
-    EXPECT_EQ(negative, 0u) << GetParam().name << ": negative values in " << output;
+    expect_finite_non_negative(image, std::string(GetParam().name) + " " + output);
   }
 }
 

@@ -1,5 +1,8 @@
 #include "render_harness.hpp"
 
+#include <gtest/gtest.h>
+
+#include <cmath>
 #include <filesystem>
 
 #include "engine/graph/graph_desc.hpp"
@@ -43,6 +46,19 @@ RenderHarness::RenderHarness(const RenderSetup& setup) : setup_(setup) {
 }
 
 RenderHarness::~RenderHarness() = default;
+
+void expect_finite_non_negative(const RenderedImage& image, const std::string& what) {
+  size_t non_finite = 0, negative = 0;
+  for (float v : image.rgba) {
+    if (!std::isfinite(v)) {
+      ++non_finite;
+    } else if (v < 0.0f) {
+      ++negative;
+    }
+  }
+  EXPECT_EQ(non_finite, 0u) << what << ": NaN or Inf values";
+  EXPECT_EQ(negative, 0u) << what << ": negative values";
+}
 
 glm::mat4 RenderHarness::view_proj() const {
   const float aspect = static_cast<float>(setup_.width) / static_cast<float>(setup_.height);

@@ -38,6 +38,9 @@ struct RenderedImage {
   }
 };
 
+// Adds a failure for every NaN, Inf or negative value of `image`, naming `what`.
+void expect_finite_non_negative(const RenderedImage& image, const std::string& what);
+
 class RenderHarness {
  public:
   explicit RenderHarness(const RenderSetup& setup);

@@ -1,0 +1,105 @@
+// Image metrics against values worked out by hand on tiny images.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "engine/image/metrics.hpp"
+
+namespace voxgi::image {
+namespace {
+
+ImageRGBA32F filled(uint32_t w, uint32_t h, float r, float g, float b) {
+  ImageRGBA32F image(w, h);
+  for (uint32_t y = 0; y < h; ++y) {
+    for (uint32_t x = 0; x < w; ++x) {
+      float* p = image.at(x, y);
+      p[0] = r;
+      p[1] = g;
+      p[2] = b;
+      p[3] = 1.0f;
+    }
+  }
+  return image;
+}
+
+TEST(ImageMetrics, IdenticalImagesHaveNoError) {
+  const ImageRGBA32F a = filled(16, 16, 0.2f, 0.5f, 3.0f);
+  const ImageMetrics m = compare_images(a, a);
+  EXPECT_DOUBLE_EQ(m.rmse, 0.0);
+  EXPECT_DOUBLE_EQ(m.rel_mse, 0.0);
+  EXPECT_NEAR(m.ssim_luminance, 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(m.luminance_bias, 0.0);
+  EXPECT_EQ(m.compared_pixels, 256u);
+}
+
+TEST(ImageMetrics, HandComputedValuesOnTwoPixels) {
+  // Reference: (1, 1, 1) and (0, 0, 0). Image: (1.5, 1, 1) and (0.1, 0.1, 0.1).
+  ImageRGBA32F reference = filled(2, 1, 0, 0, 0);
+  ImageRGBA32F image = filled(2, 1, 0, 0, 0);
+  for (int c = 0; c < 3; ++c) reference.at(0, 0)[c] = 1.0f;
+  image.at(0, 0)[0] = 1.5f;
+  image.at(0, 0)[1] = 1.0f;
+  image.at(0, 0)[2] = 1.0f;
+  for (int c = 0; c < 3; ++c) image.at(1, 0)[c] = 0.1f;
+  const ImageMetrics m = compare_images(image, reference);
+  // squared errors: 0.25, 0, 0, 0.01, 0.01, 0.01 → mean 0.28 / 6
+  EXPECT_NEAR(m.rmse, std::sqrt(0.28 / 6.0), 1e-6);
+  // relative: 0.25 / 1.01 + 3 * 0.01 / 0.01 = 0.247525 + 3 → / 6
+  EXPECT_NEAR(m.rel_mse, (0.25 / 1.01 + 3.0) / 6.0, 1e-6);
+  // luminance: image (0.2126 * 1.5 + 0.7152 + 0.0722 + 0.1) / 2, reference 0.5
+  const double image_y = (0.2126 * 1.5 + 0.7152 + 0.0722 + 0.1) / 2.0;
+  EXPECT_NEAR(m.mean_luminance, image_y, 1e-6);
+  EXPECT_NEAR(m.mean_luminance_reference, 0.5, 1e-6);
+  EXPECT_NEAR(m.luminance_bias, (image_y - 0.5) / 0.5, 1e-6);
+  EXPECT_GT(m.luminance_bias, 0.0) << "a brighter image has a positive bias";
+}
+
+TEST(ImageMetrics, TooDarkGivesNegativeBias) {
+  const ImageMetrics m = compare_images(filled(8, 8, 0.5f, 0.5f, 0.5f), filled(8, 8, 1, 1, 1));
+  EXPECT_NEAR(m.luminance_bias, -0.5, 1e-6);
+}
+
+TEST(ImageMetrics, SsimOfAConstantShiftMatchesTheFormula) {
+  // Constant images: variances and covariance vanish, so SSIM is the luminance term
+  // (2 μa μb + C1) / (μa² + μb² + C1) on the compressed luminances y / (1 + y).
+  const ImageMetrics m = compare_images(filled(12, 12, 1, 1, 1), filled(12, 12, 3, 3, 3));
+  const double a = 1.0 / 2.0, b = 3.0 / 4.0, c1 = 1e-4;
+  EXPECT_NEAR(m.ssim_luminance, (2 * a * b + c1) / (a * a + b * b + c1), 1e-9);
+}
+
+TEST(ImageMetrics, SsimDropsForNoiseButNotForIdenticalStructure) {
+  ImageRGBA32F checker = filled(32, 32, 0, 0, 0), noisy = filled(32, 32, 0, 0, 0);
+  for (uint32_t y = 0; y < 32; ++y) {
+    for (uint32_t x = 0; x < 32; ++x) {
+      const float v = ((x / 4 + y / 4) % 2) ? 1.0f : 0.1f;
+      for (int c = 0; c < 3; ++c) checker.at(x, y)[c] = v;
+      const float n = ((x * 7 + y * 13) % 5) * 0.2f;
+      for (int c = 0; c < 3; ++c) noisy.at(x, y)[c] = n;
+    }
+  }
+  EXPECT_NEAR(compare_images(checker, checker).ssim_luminance, 1.0, 1e-12);
+  EXPECT_LT(compare_images(noisy, checker).ssim_luminance, 0.5);
+}
+
+TEST(ImageMetrics, NonFinitePixelsAreCountedNotAveraged) {
+  ImageRGBA32F image = filled(4, 4, 1, 1, 1), reference = filled(4, 4, 1, 1, 1);
+  image.at(1, 1)[0] = std::numeric_limits<float>::quiet_NaN();
+  image.at(2, 2)[1] = std::numeric_limits<float>::infinity();
+  reference.at(3, 3)[2] = -std::numeric_limits<float>::infinity();
+  const ImageMetrics m = compare_images(image, reference);
+  EXPECT_EQ(m.non_finite_pixels, 2u);
+  EXPECT_EQ(m.non_finite_reference_pixels, 1u);
+  EXPECT_EQ(m.compared_pixels, 13u);
+  EXPECT_DOUBLE_EQ(m.rmse, 0.0);
+  EXPECT_TRUE(std::isfinite(m.ssim_luminance));
+}
+
+TEST(ImageMetrics, MismatchedSizesAreRejected) {
+  EXPECT_THROW(compare_images(filled(2, 2, 0, 0, 0), filled(2, 3, 0, 0, 0)), std::invalid_argument);
+  EXPECT_THROW(compare_images(ImageRGBA32F(), ImageRGBA32F()), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace voxgi::image

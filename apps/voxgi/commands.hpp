@@ -10,6 +10,7 @@
 #include "engine/graph/compiler.hpp"
 #include "engine/graph/pass.hpp"
 #include "engine/graph/plugin_loader.hpp"
+#include "engine/scene/scene.hpp"
 
 namespace voxgi::cli {
 
@@ -24,6 +25,13 @@ std::filesystem::path resolve_graph_path(const std::string& arg);
 
 // "--set key=value" arguments → overrides; throws UsageError naming the bad argument.
 std::map<std::string, std::string> parse_overrides(const std::vector<std::string>& sets);
+
+class Args;
+
+// The compile options `render` and `graph` both take from their command line (--set,
+// --full-barriers, --no-memory-sharing) for a scene and viewport.
+graph::CompileOptions compile_options(const Args& args, const scene::Scene& scene, uint32_t width,
+                                      uint32_t height);
 
 // Loads the plugins a graph needs into `registry`.
 void load_plugins_for(const graph::GraphDesc& desc, graph::Registry& registry);

@@ -47,13 +47,9 @@ int graph_command(const std::vector<std::string>& argv) {
   graph::Registry registry;
   load_plugins_for(desc, registry);
 
-  graph::CompileOptions options;
-  options.viewport_width = static_cast<uint32_t>(args.integer("width", 1280, 1, 16384));
-  options.viewport_height = static_cast<uint32_t>(args.integer("height", 720, 1, 16384));
-  options.scene_features = scene.features().as_map();
-  options.overrides = parse_overrides(args.values("set"));
-  options.full_barriers = args.flag("full-barriers");
-  options.alias_transients = !args.flag("no-memory-sharing");
+  const graph::CompileOptions options =
+      compile_options(args, scene, static_cast<uint32_t>(args.integer("width", 1280, 1, 16384)),
+                      static_cast<uint32_t>(args.integer("height", 720, 1, 16384)));
   const graph::CompiledGraph compiled = graph::compile(desc, registry, options);
 
   if (const std::optional<std::string> dump_dir = args.value("dump-dir")) {

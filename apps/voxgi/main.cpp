@@ -32,6 +32,18 @@ std::map<std::string, std::string> parse_overrides(const std::vector<std::string
   return overrides;
 }
 
+graph::CompileOptions compile_options(const Args& args, const scene::Scene& scene, uint32_t width,
+                                      uint32_t height) {
+  graph::CompileOptions options;
+  options.viewport_width = width;
+  options.viewport_height = height;
+  options.scene_features = scene.features().as_map();
+  options.overrides = parse_overrides(args.values("set"));
+  options.full_barriers = args.flag("full-barriers");
+  options.alias_transients = !args.flag("no-memory-sharing");
+  return options;
+}
+
 void load_plugins_for(const graph::GraphDesc& desc, graph::Registry& registry) {
   graph::PluginLoader loader(graph::PluginLoader::default_search_dirs());
   loader.load_for_graph(desc, registry);

@@ -92,7 +92,6 @@ int render_command(const std::vector<std::string>& argv) {
   const int frames = args.integer("frames", 1, 1, 1000000);
   const int fps = args.integer("fps", 30, 1, 1000);
   const fs::path stem = output_stem(args.value_or("out", "out/default"));
-  const std::map<std::string, std::string> overrides = parse_overrides(args.values("set"));
   const std::optional<std::string> timings_path = args.value("timings");
 
   check_writable_folder(stem, "--out");
@@ -108,13 +107,7 @@ int render_command(const std::vector<std::string>& argv) {
 
   graph::Registry registry;
   load_plugins_for(desc, registry);
-  graph::CompileOptions options;
-  options.viewport_width = width;
-  options.viewport_height = height;
-  options.scene_features = scene.features().as_map();
-  options.overrides = overrides;
-  options.full_barriers = args.flag("full-barriers");
-  options.alias_transients = !args.flag("no-memory-sharing");
+  const graph::CompileOptions options = compile_options(args, scene, width, height);
   const graph::CompiledGraph compiled = graph::compile(desc, registry, options);
   if (const std::optional<std::string> dump_dir = args.value("dump-dir")) {
     graph::dump_phases(desc, compiled, *dump_dir);

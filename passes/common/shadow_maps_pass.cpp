@@ -138,7 +138,11 @@ class ShadowMapsPass final : public graph::Pass {
     const uint32_t slots = std::min(light_slots, buffer_slots);
 
     const scene::Scene& scene = ctx.scene();
-    const SceneSphere sphere = bounding_sphere(scene);
+    // The bounds walk every vertex: redo it only when geometry moved, not when only lights did.
+    if (!sphere_ || ctx.frame().first_frame || ctx.frame().geometry_changed) {
+      sphere_ = bounding_sphere(scene);
+    }
+    const SceneSphere sphere = *sphere_;
     const float resolution = static_cast<float>(maps.extent.width);
     std::vector<ShadowLight> shadows(std::max<uint32_t>(slots, 1));
     for (uint32_t i = 0; i < slots && i < scene.lights.size(); ++i) {
@@ -200,6 +204,7 @@ class ShadowMapsPass final : public graph::Pass {
   }
 
   std::optional<gpu::GraphicsPipeline> pipeline_;
+  std::optional<SceneSphere> sphere_;
 };
 
 }  // namespace

@@ -207,6 +207,11 @@ void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
   rendered_ = false;
   timings_.clear();
 
+  resource_versions_.assign(graph_.resources.size(), 0);
+  for (size_t r = 0; r < graph_.resources.size(); ++r) {
+    const auto known = versions_by_name_.find(graph_.resources[r].info.name);
+    if (known != versions_by_name_.end()) resource_versions_[r] = known->second;
+  }
   for (const CompiledPass& pass : graph_.passes) {
     LivePass live;
     live.pass = registry_.create(pass.type);
@@ -218,6 +223,7 @@ void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
     impl.gpu_scene = gpu_scene_;
     impl.frame = &frame_;
     impl.pass = &pass;
+    impl.resource_versions = &resource_versions_;
     for (const SlotBinding& b : pass.bindings) {
       BoundResource bound;
       bound.info = &b.info;
@@ -424,6 +430,11 @@ void Executor::render(const FrameInput& input) {
                 .count();
         live.impl->executing = false;
         live.impl->params_changed = false;
+        for (const SlotBinding& b : pass.bindings) {
+          if (b.is_input || b.resource < 0) continue;
+          const size_t r = static_cast<size_t>(b.resource);
+          versions_by_name_[graph_.resources[r].info.name] = ++resource_versions_[r];
+        }
       }
       const uint32_t end_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
       queries.emplace_back(begin_query, end_query);

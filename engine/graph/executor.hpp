@@ -95,6 +95,9 @@ class Executor {
   scene::GpuScene* gpu_scene_ = nullptr;
   std::vector<Physical> physical_;
   std::vector<LivePass> passes_;
+  // Write counts per graph resource (index as in graph_.resources); by name across rebuilds.
+  std::vector<uint64_t> resource_versions_;
+  std::map<std::string, uint64_t> versions_by_name_;
   std::unique_ptr<gpu::Buffer> uniforms_;
   std::unique_ptr<gpu::TimestampQueries> timestamps_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;

@@ -56,7 +56,9 @@ struct ParamValue {
 
 enum class ResourceKind : uint32_t { Image2D = 1, Image3D = 2, Clipmap = 4, Buffer = 8 };
 using ResourceKinds = uint32_t;
-constexpr ResourceKinds kinds(ResourceKind k) { return static_cast<uint32_t>(k); }
+constexpr ResourceKinds kinds(ResourceKind k) {
+  return static_cast<uint32_t>(k);
+}
 constexpr ResourceKinds operator|(ResourceKind a, ResourceKind b) {
   return static_cast<uint32_t>(a) | static_cast<uint32_t>(b);
 }
@@ -109,7 +111,7 @@ struct ResourceInfo {
   VkExtent3D extent{0, 0, 0};  // clipmap: (R, R, R * levels), levels stacked along z
   uint32_t mip_levels = 1;
   uint32_t array_layers = 1;
-  uint32_t clipmap_levels = 0;  // clipmap only
+  uint32_t clipmap_levels = 0;   // clipmap only
   VkDeviceSize buffer_size = 0;  // buffer only
   int mip = -1;                  // the single mip the slot touches, -1 for all
   bool persistent = false;
@@ -118,10 +120,10 @@ struct ResourceInfo {
 // The live resource behind a slot during execute().
 struct BoundResource {
   const ResourceInfo* info = nullptr;
-  gpu::Image* image = nullptr;    // images and clipmaps
-  gpu::Buffer* buffer = nullptr;  // buffers
+  gpu::Image* image = nullptr;                       // images and clipmaps
+  gpu::Buffer* buffer = nullptr;                     // buffers
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // the layout the graph put it in
-  VkImageView view = VK_NULL_HANDLE;  // whole image, or the single mip of info->mip
+  VkImageView view = VK_NULL_HANDLE;                 // whole image, or the single mip of info->mip
 };
 
 class PassContextImpl;
@@ -149,6 +151,10 @@ class PassContext {
   const std::string& choice(std::string_view param) const;
   // True when a parameter of this pass changed since the previous execute().
   bool params_changed() const;
+  // How many times a pass writing the slot's resource has executed (skipped runs do not count),
+  // kept across rebuilds for resources of the same name. A pass that stores the versions it
+  // consumed can tell that none of its inputs changed. 0 for an unbound optional slot.
+  uint64_t resource_version(std::string_view slot) const;
 
   VkCommandBuffer cmd() const;
   // A barrier between two of this pass's own dispatches or draws on a resource it owns for the

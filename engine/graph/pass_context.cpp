@@ -49,6 +49,16 @@ const ResourceInfo& PassContext::info(std::string_view slot) const {
   return impl_.pass->bindings[i].info;
 }
 
+uint64_t PassContext::resource_version(std::string_view slot) const {
+  const SlotBinding* b = impl_.pass->binding(slot);
+  if (!b) {
+    throw std::invalid_argument("pass '" + impl_.pass->name + "': no slot '" + std::string(slot) +
+                                "'");
+  }
+  if (b->resource < 0 || !impl_.resource_versions) return 0;
+  return (*impl_.resource_versions)[static_cast<size_t>(b->resource)];
+}
+
 const BoundResource& PassContext::resource(std::string_view slot) const {
   if (!impl_.executing) {
     throw std::logic_error("pass '" + impl_.pass->name + "': resource('" + std::string(slot) +

@@ -18,7 +18,8 @@ class PassContextImpl {
   scene::GpuScene* gpu_scene = nullptr;
   const FrameInfo* frame = nullptr;
   const CompiledPass* pass = nullptr;
-  std::vector<BoundResource> bound;  // parallel to pass->bindings
+  std::vector<BoundResource> bound;                          // parallel to pass->bindings
+  const std::vector<uint64_t>* resource_versions = nullptr;  // by graph resource index
   bool params_changed = true;
   bool executing = false;
   VkCommandBuffer cmd = VK_NULL_HANDLE;

@@ -1,6 +1,6 @@
 #pragma once
 // The per-light shadow data written by common.shadow_maps and read by lighting passes.
-// Mirrors shaders/common/shadow_data.glsl. Light i owns array layers 6*i .. 6*i+5 of the
+// Mirrors shaders/lib/shadow_data.glsl. Light i owns array layers 6*i .. 6*i+5 of the
 // shadow map image (a point light uses all six cube faces, other lights the first one).
 
 #include <glm/glm.hpp>

@@ -22,6 +22,8 @@ using test::param;
 using test::slot;
 
 int g_compose_setups = 0;
+uint64_t g_values_version_seen = 0;   // resource_version("values") at compose's last execute
+uint64_t g_history_version_seen = 0;  // resource_version("history") likewise
 
 std::unique_ptr<gpu::ComputePipeline> make_pipeline(PassContext& ctx, const char* shader,
                                                     std::vector<gpu::Binding> bindings,
@@ -98,6 +100,8 @@ class ComposePass : public Pass {
                               4);
   }
   void execute(PassContext& ctx) override {
+    g_values_version_seen = ctx.resource_version("values");
+    g_history_version_seen = ctx.resource_version("history");
     const BoundResource& values = ctx.resource("values");
     const BoundResource& history = ctx.resource("history");
     const BoundResource& dst = ctx.resource("dst");
@@ -243,6 +247,19 @@ TEST_F(ExecutorTest, SkippedPassIsReportedAndPersistentContentsStay) {
   const std::vector<float> third = render_and_read(executor);
   EXPECT_FLOAT_EQ(third[1], 1.0f);  // skipped, so not accumulated again
   EXPECT_EQ(executor.frame_index(), 3u);
+}
+
+TEST_F(ExecutorTest, ResourceVersionsCountExecutedWritersOnly) {
+  Executor& executor = build();
+  render_and_read(executor);
+  EXPECT_EQ(g_values_version_seen, 1u);   // fill ran before compose
+  EXPECT_EQ(g_history_version_seen, 0u);  // accumulate runs after compose
+  render_and_read(executor);
+  EXPECT_EQ(g_values_version_seen, 2u);
+  EXPECT_EQ(g_history_version_seen, 1u);
+  render_and_read(executor);
+  EXPECT_EQ(g_values_version_seen, 3u);
+  EXPECT_EQ(g_history_version_seen, 1u);  // accumulate skipped on frame 2
 }
 
 TEST_F(ExecutorTest, LiveAndNonLiveParameterChanges) {

@@ -1,6 +1,6 @@
 #ifndef VOXGI_SHADOW_DATA_GLSL
 #define VOXGI_SHADOW_DATA_GLSL
-// Mirrors passes/common/shadow_layout.hpp.
+// The shadow-map data the common.shadow_maps pass writes; mirrors passes/common/shadow_layout.hpp.
 struct ShadowLight {
   mat4 view_proj[6];  // relative to origin: clip = view_proj * (p - origin)
   vec4 origin;

@@ -1,0 +1,81 @@
+#ifndef VOXGI_VOXEL_CLIPMAP_GLSL
+#define VOXGI_VOXEL_CLIPMAP_GLSL
+// Clipmap addressing shared by every voxel family (the contract between voxelization, light
+// injection, filtering and cone tracing).
+//
+// A clipmap resource is one 3D image of extent (R, R, R * L): level l occupies texels
+// z in [l * R, (l + 1) * R). Level 0 is the finest. Level l has voxels of edge
+// voxel_size(l) = level0 size * 2^l and covers the world box [level_min(l), level_min(l) + R *
+// voxel_size(l)). Storage is toroidal: the voxel with integer world index v (per level) lives at
+// texel (v mod R) + (0, 0, l * R), so moving the window only invalidates the slabs that entered
+// it. A single level fitted to the scene (L = 1) is the dense volume of the source documents.
+//
+// World positions are made relative to `anchor` before any voxel arithmetic so that scenes far
+// from the origin keep float precision (the CPU computes anchor-relative corners in double).
+//
+// Include after defining VOXEL_CLIPMAP_SET and VOXEL_CLIPMAP_BINDING (defaults: set 0,
+// binding 0). The buffer is the graph resource written by the voxelization pass.
+
+#ifndef VOXEL_CLIPMAP_SET
+#define VOXEL_CLIPMAP_SET 0
+#endif
+#ifndef VOXEL_CLIPMAP_BINDING
+#define VOXEL_CLIPMAP_BINDING 0
+#endif
+
+#define VOXEL_CLIPMAP_MAX_LEVELS 8
+
+struct VoxelClipmapLevel {
+  ivec4 origin_voxel;     // xyz: world voxel index of the window's min corner; w: 1 once valid
+  vec4 min_corner_size;   // xyz: window min corner relative to anchor (m); w: voxel edge (m)
+};
+
+layout(std430, set = VOXEL_CLIPMAP_SET, binding = VOXEL_CLIPMAP_BINDING) readonly buffer
+VoxelClipmapInfo {
+  vec4 anchor;            // xyz: world-space anchor (m); w: unused
+  uvec4 dims;             // x: R (voxels per level edge), y: L (levels), z, w: unused
+  VoxelClipmapLevel levels[VOXEL_CLIPMAP_MAX_LEVELS];
+} voxel_clipmap;
+
+int voxel_resolution() { return int(voxel_clipmap.dims.x); }
+int voxel_level_count() { return int(voxel_clipmap.dims.y); }
+float voxel_size(int level) { return voxel_clipmap.levels[level].min_corner_size.w; }
+vec3 voxel_level_min(int level) { return voxel_clipmap.levels[level].min_corner_size.xyz; }
+bool voxel_level_valid(int level) { return voxel_clipmap.levels[level].origin_voxel.w != 0; }
+
+// Anchor-relative position from a world-space one.
+vec3 voxel_relative(vec3 world) { return world - voxel_clipmap.anchor.xyz; }
+
+// Continuous coordinate inside level `level`'s window, in voxels: [0, R) inside.
+vec3 voxel_window_coord(vec3 relative_position, int level) {
+  return (relative_position - voxel_level_min(level)) / voxel_size(level);
+}
+
+bool voxel_inside_window(vec3 window_coord) {
+  return all(greaterThanEqual(window_coord, vec3(0.0))) &&
+         all(lessThan(window_coord, vec3(float(voxel_resolution()))));
+}
+
+// Texel of the voxel at integer window coordinate `window_voxel` (0..R-1) of `level`, applying
+// the toroidal wrap.
+ivec3 voxel_texel(ivec3 window_voxel, int level) {
+  int r = voxel_resolution();
+  ivec3 world_voxel = window_voxel + voxel_clipmap.levels[level].origin_voxel.xyz;
+  ivec3 wrapped = ((world_voxel % r) + r) % r;
+  return ivec3(wrapped.xy, wrapped.z + level * r);
+}
+
+// The finest level whose window contains `relative_position` with `margin` voxels to spare,
+// or -1 when none does.
+int voxel_finest_level(vec3 relative_position, float margin) {
+  int r = voxel_resolution();
+  for (int level = 0; level < voxel_level_count(); ++level) {
+    vec3 c = voxel_window_coord(relative_position, level);
+    if (all(greaterThanEqual(c, vec3(margin))) && all(lessThan(c, vec3(float(r) - margin)))) {
+      return level;
+    }
+  }
+  return -1;
+}
+
+#endif

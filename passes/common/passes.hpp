@@ -11,5 +11,6 @@ void register_deferred_lighting(graph::Registry& registry);
 void register_ambient(graph::Registry& registry);
 void register_composite(graph::Registry& registry);
 void register_display_transform(graph::Registry& registry);
+void register_voxelize(graph::Registry& registry);
 
 }  // namespace voxgi::passes::common

@@ -15,4 +15,5 @@ VOXGI_PLUGIN_EXPORT void voxgi_plugin_register(voxgi::graph::Registry& registry)
   register_ambient(registry);
   register_composite(registry);
   register_display_transform(registry);
+  register_voxelize(registry);
 }

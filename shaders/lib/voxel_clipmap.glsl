@@ -6,9 +6,11 @@
 // A clipmap resource is one 3D image of extent (R, R, R * L): level l occupies texels
 // z in [l * R, (l + 1) * R). Level 0 is the finest. Level l has voxels of edge
 // voxel_size(l) = level0 size * 2^l and covers the world box [level_min(l), level_min(l) + R *
-// voxel_size(l)). Storage is toroidal: the voxel with integer world index v (per level) lives at
-// texel (v mod R) + (0, 0, l * R), so moving the window only invalidates the slabs that entered
-// it. A single level fitted to the scene (L = 1) is the dense volume of the source documents.
+// voxel_size(l)). Storage is toroidal: the voxel with integer index v (per level, counted from
+// the anchor) lives at texel (v mod R) + (0, 0, l * R), so moving the window only invalidates
+// the slabs that entered it. Window corners are an even number of their voxels from the anchor,
+// so every level's window lies on the grid of the next coarser level (levels are nested). A
+// single level fitted to the scene (L = 1) is the dense volume of the source documents.
 //
 // World positions are made relative to `anchor` before any voxel arithmetic so that scenes far
 // from the origin keep float precision (the CPU computes anchor-relative corners in double).
@@ -26,7 +28,9 @@
 #define VOXEL_CLIPMAP_MAX_LEVELS 8
 
 struct VoxelClipmapLevel {
-  ivec4 origin_voxel;     // xyz: world voxel index of the window's min corner; w: 1 once valid
+  // xyz: voxel index (in voxels of this level) of the window's min corner, counted from the
+  // anchor, which lies on every level's grid; w: 1 once valid
+  ivec4 origin_voxel;
   vec4 min_corner_size;   // xyz: window min corner relative to anchor (m); w: voxel edge (m)
 };
 

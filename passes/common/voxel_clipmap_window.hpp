@@ -1,0 +1,81 @@
+#pragma once
+// CPU side of the voxel clipmap: where each level's window lies, which boxes of voxels must be
+// revoxelized when windows move or dynamic geometry moves, and the `VoxelClipmapInfo` buffer
+// (shaders/lib/voxel_clipmap.glsl) that tells consumers about it. Plain math, no Vulkan.
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace voxgi::passes::common {
+
+inline constexpr uint32_t kVoxelMaxLevels = 8;  // VOXEL_CLIPMAP_MAX_LEVELS
+
+// std430 mirror of VoxelClipmapInfo in shaders/lib/voxel_clipmap.glsl.
+struct VoxelClipmapLevelInfo {
+  glm::ivec4 origin_voxel;    // xyz: window min corner in voxels counted from the anchor; w: valid
+  glm::vec4 min_corner_size;  // xyz: window min corner relative to the anchor (m); w: voxel edge
+};
+struct VoxelClipmapInfo {
+  glm::vec4 anchor;
+  glm::uvec4 dims;  // x: R, y: L
+  VoxelClipmapLevelInfo levels[kVoxelMaxLevels];
+};
+static_assert(sizeof(VoxelClipmapInfo) == 288);
+
+// A box of voxels of one level in window coordinates (0..R-1), max exclusive.
+struct VoxelBox {
+  int level = 0;
+  glm::ivec3 min{0};
+  glm::ivec3 max{0};
+  bool empty() const { return max.x <= min.x || max.y <= min.y || max.z <= min.z; }
+  int64_t voxels() const {
+    return empty() ? 0 : int64_t(max.x - min.x) * (max.y - min.y) * (max.z - min.z);
+  }
+};
+
+// World-space axis-aligned box, double precision (scenes far from the origin).
+struct WorldBox {
+  glm::dvec3 min{0.0};
+  glm::dvec3 max{0.0};
+};
+
+// Level-0 voxel edge chosen when the parameter is 0. With one level the window is fitted to
+// the scene: R - 4 voxels span the largest scene side (two voxels of margin each side, one of
+// which the window snapping may take). With L levels the coarsest level's half-width
+// (R/2 - 1 voxels) spans twice the largest side, so the whole scene stays inside the coarsest
+// level while the camera is within one scene extent of the scene bounds. Empty scenes (and
+// single points) use a 1 m side.
+double auto_voxel_size(double scene_extent, uint32_t resolution, uint32_t levels);
+
+// The anchor: `point` snapped to the grid of twice the coarsest voxel edge, so that every
+// level's window corner (an even number of its voxels from the anchor) lies on every coarser
+// level's grid and the levels stay nested.
+glm::dvec3 snap_anchor(const glm::dvec3& point, double coarsest_voxel_size);
+
+// Window min corner (voxels of the level, from the anchor) of a window of R voxels centred on
+// `center_relative` (metres from the anchor): an even voxel count, so windows are nested.
+glm::ivec3 window_origin(const glm::dvec3& center_relative, double voxel_size, uint32_t resolution);
+
+// The voxels that enter a level's window when its origin moves from `old_origin` to
+// `new_origin`: up to three disjoint slabs, or the whole window when it moved by R or more on
+// an axis.
+std::vector<VoxelBox> exposed_slabs(int level, const glm::ivec3& old_origin,
+                                    const glm::ivec3& new_origin, uint32_t resolution);
+
+// The voxels of a level's window (origin, edge) that `box` touches, grown by `margin` voxels and
+// clipped to the window; empty when outside.
+VoxelBox window_box(int level, const WorldBox& box, const glm::dvec3& anchor,
+                    const glm::ivec3& origin, double voxel_size, uint32_t resolution, int margin);
+
+// Splits a box along z (then y) into pieces of at most `max_voxels` voxels (>= one row).
+std::vector<VoxelBox> split_box(const VoxelBox& box, int64_t max_voxels);
+
+// Merges boxes of the same level that overlap, until none do.
+std::vector<VoxelBox> merge_overlapping(std::vector<VoxelBox> boxes);
+
+// World bounds of an object-space box under a transform.
+WorldBox transform_box(const glm::vec3& min, const glm::vec3& max, const glm::mat4& world);
+
+}  // namespace voxgi::passes::common

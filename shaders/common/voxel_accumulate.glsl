@@ -1,0 +1,93 @@
+#ifndef VOXGI_VOXEL_ACCUMULATE_GLSL
+#define VOXGI_VOXEL_ACCUMULATE_GLSL
+// How voxelization fragments add their values into the scratch buffer, and how the resolve
+// pass turns the sums into voxel values. The scratch holds one record of `stride` uint words
+// per voxel of the box being voxelized.
+//
+// Strategy accumulate_hdr (VOXEL_STRATEGY_HDR): integer atomic adds of fixed-point values.
+// Integer addition is associative, so the sums, and the resolved voxels, are the same in every
+// run whatever order the fragments come in. Words:
+//   0 count | 1-3 albedo rgb x 4096 | 4 alpha x 4096 | 5-7 normal xyz x 4096 (two's complement)
+//   | 8-13 emission rgb as 64-bit fixed point x 2^24 (low word, high word per channel; only
+//   with VOXEL_HAS_EMISSION).
+// Overflow budget per voxel: 2^32 / 4096 = 1 048 576 writers of albedo or alpha 1.0;
+// 2^31 / 4096 = 524 288 writers of a unit normal component; 2^64 / (65504 x 2^24) ≈ 16.8
+// million writers of the largest emission (65504, the half-float maximum every writer is
+// clamped to); 2^32 writers in all. A voxel gets one write per triangle overlapping it, so
+// these are far beyond any real mesh. Resolution: 1/4096 for albedo, alpha and normals,
+// 2^-24 ≈ 6e-8 for emission (an emitter of 1e-5 keeps three significant digits).
+//
+// Strategy average_rgba8 (VOXEL_STRATEGY_RGBA8): the compare-and-swap moving average of the
+// source documents, one packed RGBA8 word per attribute (rgb value, alpha = sample count).
+// Words: 0 albedo | 1 normal * 0.5 + 0.5 | 2 emission. Documented limits: values are 8-bit
+// LDR (emission above 1 clips), the count saturates at 255 (later writers get weight 1/256),
+// the result depends on the order of the writers, and a writer gives up after
+// VOXEL_CAS_MAX_TRIES failed swaps instead of spinning without bound.
+
+#ifndef VOXEL_SCRATCH_BINDING
+#define VOXEL_SCRATCH_BINDING 0
+#endif
+
+layout(std430, set = 0, binding = VOXEL_SCRATCH_BINDING) coherent buffer VoxelScratch {
+  uint voxel_scratch[];
+};
+
+const float VOXEL_UNIT_SCALE = 4096.0;
+const float VOXEL_EMISSION_SCALE = 16777216.0;  // 2^24
+const uint VOXEL_HDR_WORDS = 8u;
+const uint VOXEL_HDR_WORDS_WITH_EMISSION = 14u;
+const uint VOXEL_RGBA8_WORDS = 3u;
+const int VOXEL_CAS_MAX_TRIES = 4096;
+
+// Adds a non-negative fixed-point value below 2^40 (value = x * 2^24, x <= 65504) to the
+// 64-bit sum in words (low, low + 1); a carry out of the low word goes into the high word.
+void voxel_add_fixed64(uint low_word, float x) {
+  float high_part = floor(x / 256.0);  // x * 2^24 / 2^32
+  uint high = uint(high_part);
+  uint low = uint(round((x - high_part * 256.0) * VOXEL_EMISSION_SCALE));
+  if (low == 0u && high == 0u) return;
+  uint before = atomicAdd(voxel_scratch[low_word], low);
+  uint carry = (before + low < before) ? 1u : 0u;
+  if (high + carry != 0u) atomicAdd(voxel_scratch[low_word + 1u], high + carry);
+}
+
+float voxel_read_fixed64(uint low_word) {
+  return (float(voxel_scratch[low_word + 1u]) * 4294967296.0 + float(voxel_scratch[low_word])) /
+         VOXEL_EMISSION_SCALE;
+}
+
+void voxel_accumulate_hdr(uint base, vec3 albedo, float alpha, vec3 normal, vec3 emission) {
+  uvec3 a = uvec3(round(clamp(albedo, 0.0, 1.0) * VOXEL_UNIT_SCALE));
+  ivec3 n = ivec3(round(clamp(normal, -1.0, 1.0) * VOXEL_UNIT_SCALE));
+  atomicAdd(voxel_scratch[base], 1u);
+  atomicAdd(voxel_scratch[base + 1u], a.r);
+  atomicAdd(voxel_scratch[base + 2u], a.g);
+  atomicAdd(voxel_scratch[base + 3u], a.b);
+  atomicAdd(voxel_scratch[base + 4u], uint(round(clamp(alpha, 0.0, 1.0) * VOXEL_UNIT_SCALE)));
+  atomicAdd(voxel_scratch[base + 5u], uint(n.x));
+  atomicAdd(voxel_scratch[base + 6u], uint(n.y));
+  atomicAdd(voxel_scratch[base + 7u], uint(n.z));
+#ifdef VOXEL_HAS_EMISSION
+  voxel_add_fixed64(base + 8u, emission.r);
+  voxel_add_fixed64(base + 10u, emission.g);
+  voxel_add_fixed64(base + 12u, emission.b);
+#endif
+}
+
+// Moving average of `value` (0..1) into the packed word: rgb average, alpha = count / 255.
+void voxel_average_rgba8(uint word, vec3 value) {
+  value = clamp(value, 0.0, 1.0);
+  uint expected = 0u;
+  uint desired = packUnorm4x8(vec4(value, 1.0 / 255.0));
+  for (int attempt = 0; attempt < VOXEL_CAS_MAX_TRIES; ++attempt) {
+    uint found = atomicCompSwap(voxel_scratch[word], expected, desired);
+    if (found == expected) return;
+    expected = found;
+    vec4 current = unpackUnorm4x8(found);
+    float count = round(current.a * 255.0);
+    vec3 average = (current.rgb * count + value) / (count + 1.0);
+    desired = packUnorm4x8(vec4(average, min(count + 1.0, 255.0) / 255.0));
+  }
+}
+
+#endif

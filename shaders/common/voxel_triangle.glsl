@@ -1,0 +1,29 @@
+#ifndef VOXGI_VOXEL_TRIANGLE_GLSL
+#define VOXGI_VOXEL_TRIANGLE_GLSL
+// The per-triangle data the voxelization geometry shader hands to the fragment shader (flat),
+// so that the fragment shader can run an exact triangle/voxel overlap test (the separating
+// axis test in the form of Schwarz and Seidel 2010: the triangle's plane, the triangle's
+// bounding box and three edge tests in each of the three axis-aligned projections) and
+// evaluate attributes at voxel centres. Everything is relative to the triangle's first
+// vertex v0, in window voxel units, so that magnitudes stay small.
+//
+// VOXEL_TRIANGLE_QUALIFIER is `out` in the geometry shader and `in` in the fragment shader.
+
+layout(location = 0) flat VOXEL_TRIANGLE_QUALIFIER vec4 tri_plane;    // xyz unit normal; w: texture lod
+layout(location = 1) flat VOXEL_TRIANGLE_QUALIFIER vec2 tri_plane_d;  // box-min-corner offsets (below)
+layout(location = 2) flat VOXEL_TRIANGLE_QUALIFIER vec3 tri_aabb_min;  // window coordinates
+layout(location = 3) flat VOXEL_TRIANGLE_QUALIFIER vec3 tri_aabb_max;
+layout(location = 4) flat VOXEL_TRIANGLE_QUALIFIER vec3 tri_edges[9];  // (normal.xy, offset) xy, yz, zx
+layout(location = 13) flat VOXEL_TRIANGLE_QUALIFIER vec3 tri_v0;       // window coordinates
+layout(location = 14) flat VOXEL_TRIANGLE_QUALIFIER vec3 tri_bary1;    // barycentric b1 = dot(q - v0, bary1)
+layout(location = 15) flat VOXEL_TRIANGLE_QUALIFIER vec3 tri_bary2;
+layout(location = 16) flat VOXEL_TRIANGLE_QUALIFIER vec3 tri_normals[3];  // world vertex normals
+layout(location = 19) flat VOXEL_TRIANGLE_QUALIFIER vec4 tri_uv01;
+layout(location = 20) flat VOXEL_TRIANGLE_QUALIFIER vec2 tri_uv2;
+layout(location = 21) flat VOXEL_TRIANGLE_QUALIFIER uvec2 tri_instance_axis;  // instance, dominant axis
+
+// Tolerance of the overlap test in voxels: covers float rounding of window coordinates up to a
+// few hundred voxels; it adds voxels that touch the triangle within this distance.
+const float VOXEL_OVERLAP_EPSILON = 2e-4;
+
+#endif

@@ -1,0 +1,109 @@
+#version 460
+// Voxelization: for the pixel column of this fragment, finds the voxels of the box that the
+// triangle really overlaps (at most three along the projection axis; an exact separating-axis
+// test, see voxel_triangle.glsl), evaluates the material at each voxel's centre (projected
+// on the triangle) and adds it into the scratch record of that voxel. With
+// VOXEL_CONSERVATIVE == 0 the classic non-conservative rule applies instead: the one voxel at
+// the pixel centre's depth.
+
+#define SCENE_TEXTURE_EXPLICIT_LOD
+#include "lib/common.glsl"
+#include "lib/scene.glsl"
+#include "common/voxel_draw.glsl"
+#include "common/voxel_accumulate.glsl"
+
+#define VOXEL_TRIANGLE_QUALIFIER in
+#include "common/voxel_triangle.glsl"
+
+#ifndef VOXEL_CONSERVATIVE
+#define VOXEL_CONSERVATIVE 1
+#endif
+
+bool overlaps(ivec3 voxel) {
+  vec3 p = vec3(voxel);
+  // Bounding boxes.
+  if (any(greaterThan(p, tri_aabb_max + VOXEL_OVERLAP_EPSILON)) ||
+      any(lessThan(p + 1.0, tri_aabb_min - VOXEL_OVERLAP_EPSILON))) {
+    return false;
+  }
+  vec3 q = p - tri_v0;
+  // Plane: the box's lowest and highest corners along the normal straddle it.
+  float s = dot(tri_plane.xyz, q);
+  if (s + tri_plane_d.x > VOXEL_OVERLAP_EPSILON || s + tri_plane_d.y < -VOXEL_OVERLAP_EPSILON) {
+    return false;
+  }
+  // Edges in the three projections (xy, yz, zx).
+  vec2 projected[3] = vec2[3](q.xy, q.yz, q.zx);
+  for (int i = 0; i < 9; ++i) {
+    vec3 e = tri_edges[i];
+    if (dot(e.xy, projected[i / 3]) + e.z < -VOXEL_OVERLAP_EPSILON) return false;
+  }
+  return true;
+}
+
+void store(ivec3 voxel) {
+  // Material at the voxel centre projected on the triangle, barycentrics clamped inside it.
+  vec3 q = vec3(voxel) + 0.5 - tri_v0;
+  q -= tri_plane.xyz * dot(tri_plane.xyz, q);
+  float b1 = dot(q, tri_bary1), b2 = dot(q, tri_bary2);
+  vec3 bary = max(vec3(1.0 - b1 - b2, b1, b2), vec3(0.0));
+  float sum = bary.x + bary.y + bary.z;
+  bary = sum > 1e-6 ? bary / sum : vec3(1.0 / 3.0);
+  vec2 uv = tri_uv01.xy * bary.x + tri_uv01.zw * bary.y + tri_uv2 * bary.z;
+  vec3 interpolated =
+      tri_normals[0] * bary.x + tri_normals[1] * bary.y + tri_normals[2] * bary.z;
+  // Zero or cancelling vertex normals fall back to the face normal (window axes are world axes).
+  vec3 normal = safe_normalize(interpolated, tri_plane.xyz);
+
+  uint instance = tri_instance_axis.x;
+  scene_texture_lod = tri_plane.w;
+  MaterialSample m = sample_material(scene_instances[instance].material, uv, normal, vec4(0.0));
+  if (m.alpha_mask && m.base_color.a < m.alpha_cutoff) return;
+  vec3 albedo = m.base_color.rgb * (1.0 - m.metallic);  // the glTF BRDF's diffuse albedo
+  vec3 emission = sanitize_radiance(m.emissive);
+  vec3 n = safe_normalize(m.normal, tri_plane.xyz);
+
+  ivec3 local = voxel - voxel_draw.box_min.xyz;
+  ivec3 extent = voxel_draw.box_max.xyz - voxel_draw.box_min.xyz;
+  uint index = uint((local.z * extent.y + local.y) * extent.x + local.x);
+  uint base = index * uint(voxel_draw.box_max.w);
+#ifdef VOXEL_STRATEGY_RGBA8
+  voxel_average_rgba8(base, albedo);
+  voxel_average_rgba8(base + 1u, n * 0.5 + 0.5);
+#ifdef VOXEL_HAS_EMISSION
+  voxel_average_rgba8(base + 2u, emission);
+#endif
+#else
+  voxel_accumulate_hdr(base, albedo, m.base_color.a, n, emission);
+#endif
+}
+
+void main() {
+  int axis = int(tri_instance_axis.y);
+  int u = axis == 2 ? 0 : (axis == 0 ? 1 : 2);
+  int v = axis == 2 ? 1 : (axis == 0 ? 2 : 0);
+  ivec3 box_min = voxel_draw.box_min.xyz, box_max = voxel_draw.box_max.xyz;
+  ivec3 voxel = ivec3(0);
+  voxel[u] = int(gl_FragCoord.x) + box_min[u];
+  voxel[v] = int(gl_FragCoord.y) + box_min[v];
+  if (voxel[u] >= box_max[u] || voxel[v] >= box_max[v]) return;
+
+  // Depth of the triangle's plane along the projection axis over this pixel column.
+  vec3 n = tri_plane.xyz;
+  float cu = float(voxel[u]) + 0.5 - tri_v0[u], cv = float(voxel[v]) + 0.5 - tri_v0[v];
+  float center = tri_v0[axis] - (n[u] * cu + n[v] * cv) / n[axis];
+#if VOXEL_CONSERVATIVE == 0
+  voxel[axis] = int(floor(center));
+  if (voxel[axis] >= box_min[axis] && voxel[axis] < box_max[axis]) store(voxel);
+#else
+  float half_range = 0.5 * (abs(n[u]) + abs(n[v])) / abs(n[axis]);
+  float lo = max(center - half_range, tri_aabb_min[axis]) - VOXEL_OVERLAP_EPSILON;
+  float hi = min(center + half_range, tri_aabb_max[axis]) + VOXEL_OVERLAP_EPSILON;
+  int first = max(int(floor(lo)), box_min[axis]);
+  int last = min(min(int(floor(hi)), box_max[axis] - 1), first + 3);
+  for (int k = first; k <= last; ++k) {
+    voxel[axis] = k;
+    if (overlaps(voxel)) store(voxel);
+  }
+#endif
+}

@@ -1,0 +1,185 @@
+// Clipmap windows of common.voxelize: the CPU window logic (slabs, nesting, splitting), and on
+// the GPU that scrolling the camera (by a few voxels, and by more than a level in one frame)
+// leaves volumes equal to a full revoxelization at the new place.
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <set>
+#include <tuple>
+
+#include "engine/scene/scene_builder.hpp"
+#include "passes/common/voxel_clipmap_window.hpp"
+#include "tests/common/voxel_test_support.hpp"
+#include "tests/gpu/gpu_test_env.hpp"
+
+namespace voxgi::test {
+namespace {
+
+using passes::common::exposed_slabs;
+using passes::common::merge_overlapping;
+using passes::common::split_box;
+using passes::common::VoxelBox;
+using passes::common::window_origin;
+
+TEST(VoxelClipmapWindow, ExposedSlabsAreDisjointAndCoverExactlyTheNewVoxels) {
+  const int r = 16;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> step(-20, 20);
+  for (int trial = 0; trial < 200; ++trial) {
+    const glm::ivec3 old_origin(step(rng), step(rng), step(rng));
+    const glm::ivec3 new_origin = old_origin + glm::ivec3(step(rng), step(rng), step(rng)) / 2;
+    std::vector<int> hits(size_t(r) * r * r, 0);
+    for (const VoxelBox& b : exposed_slabs(0, old_origin, new_origin, r)) {
+      for (int z = b.min.z; z < b.max.z; ++z)
+        for (int y = b.min.y; y < b.max.y; ++y)
+          for (int x = b.min.x; x < b.max.x; ++x) ++hits[(size_t(z) * r + y) * r + x];
+    }
+    for (int z = 0; z < r; ++z) {
+      for (int y = 0; y < r; ++y) {
+        for (int x = 0; x < r; ++x) {
+          const glm::ivec3 world = glm::ivec3(x, y, z) + new_origin;
+          const glm::ivec3 in_old = world - old_origin;
+          const bool was_inside = glm::all(glm::greaterThanEqual(in_old, glm::ivec3(0))) &&
+                                  glm::all(glm::lessThan(in_old, glm::ivec3(r)));
+          ASSERT_EQ(hits[(size_t(z) * r + y) * r + x], was_inside ? 0 : 1)
+              << "voxel " << x << "," << y << "," << z << " trial " << trial;
+        }
+      }
+    }
+  }
+}
+
+TEST(VoxelClipmapWindow, LevelsStayNestedOnCoarserGrids) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> pos(-1000.0, 1000.0);
+  const uint32_t r = 16;
+  for (int trial = 0; trial < 500; ++trial) {
+    const glm::dvec3 c(pos(rng), pos(rng), pos(rng));
+    for (int l = 0; l + 1 < 6; ++l) {
+      const double s = 0.1 * std::ldexp(1.0, l);
+      const glm::ivec3 fine = window_origin(c, s, r), coarse = window_origin(c, 2 * s, r);
+      // The fine window's corner lies on the coarse grid and inside the coarse window.
+      EXPECT_EQ(fine.x % 2, 0);
+      const glm::ivec3 fine_in_coarse = fine / 2;
+      EXPECT_TRUE(glm::all(glm::greaterThanEqual(fine_in_coarse, coarse)));
+      EXPECT_TRUE(glm::all(glm::lessThanEqual(fine_in_coarse + int(r / 2), coarse + int(r))));
+    }
+  }
+}
+
+TEST(VoxelClipmapWindow, SplitAndMergeKeepEveryVoxel) {
+  const VoxelBox box{2, {1, 2, 3}, {14, 9, 16}};
+  for (int64_t budget : {7, 13, 91, 1000, 100000}) {
+    int64_t total = 0;
+    for (const VoxelBox& piece : split_box(box, budget)) {
+      EXPECT_LE(piece.voxels(), std::max<int64_t>(budget, box.max.x - box.min.x));
+      EXPECT_EQ(piece.level, 2);
+      total += piece.voxels();
+    }
+    EXPECT_EQ(total, box.voxels()) << budget;
+  }
+  const std::vector<VoxelBox> merged = merge_overlapping({{0, {0, 0, 0}, {4, 4, 4}},
+                                                          {0, {3, 3, 3}, {6, 6, 6}},
+                                                          {1, {0, 0, 0}, {2, 2, 2}},
+                                                          {0, {10, 10, 10}, {12, 12, 12}},
+                                                          {0, {5, 5, 5}, {5, 9, 9}}});
+  EXPECT_EQ(merged.size(), 3u);  // the empty box is dropped, the overlapping pair merged
+}
+
+// Boxes and triangles spread over 40 m.
+scene::Scene spread_scene() {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  scene::SceneBuilder b("spread");
+  for (int i = 0; i < 24; ++i) {
+    scene::Material m = diffuse({unit(rng), unit(rng), unit(rng)});
+    if (i % 5 == 0) m.emissive = glm::vec3(unit(rng), unit(rng), unit(rng)) * 20.0f;
+    const int mat = b.add_material(m);
+    const glm::vec3 center = (glm::vec3(unit(rng), unit(rng), unit(rng)) - 0.5f) * 40.0f;
+    const glm::vec3 size = glm::vec3(0.3f) + glm::vec3(unit(rng), unit(rng), unit(rng)) * 3.0f;
+    b.add_box("box" + std::to_string(i), center, size, mat, unit(rng) * 3.0f);
+  }
+  const int mat = b.add_material(diffuse({0.9f, 0.9f, 0.9f}));
+  const scene::Primitive triangles = random_scene(3, glm::mat4(1.0f)).meshes[0].primitives[0];
+  b.add_mesh("tris", triangles.vertices, triangles.indices, mat,
+             glm::scale(glm::mat4(1.0f), glm::vec3(6.0f)));
+  return b.finish();
+}
+
+struct Mismatch {
+  size_t voxels = 0, occupied = 0, different = 0;
+};
+
+// Compares two runs' volumes level by level through each one's toroidal mapping.
+Mismatch compare_volumes(const VoxelVolumes& a, const VoxelVolumes& b) {
+  Mismatch m;
+  const int r = static_cast<int>(a.resolution);
+  for (int l = 0; l < int(a.levels); ++l) {
+    EXPECT_EQ(glm::ivec4(a.info.levels[l].origin_voxel), glm::ivec4(b.info.levels[l].origin_voxel))
+        << "level " << l;
+    for (int z = 0; z < r; ++z) {
+      for (int y = 0; y < r; ++y) {
+        for (int x = 0; x < r; ++x) {
+          const size_t ta = a.texel(l, {x, y, z}), tb = b.texel(l, {x, y, z});
+          ++m.voxels;
+          m.occupied += a.normal[ta].w > 0.5f;
+          const bool same =
+              std::memcmp(&a.albedo_bytes[ta * 4], &b.albedo_bytes[tb * 4], 4) == 0 &&
+              std::memcmp(&a.normal_bytes[ta * 8], &b.normal_bytes[tb * 8], 8) == 0 &&
+              std::memcmp(&a.emission_bytes[ta * 8], &b.emission_bytes[tb * 8], 8) == 0;
+          m.different += !same;
+        }
+      }
+    }
+  }
+  return m;
+}
+
+const std::map<std::string, std::string> kClipmapParams = {{"voxel.resolution", "16"},
+                                                           {"voxel.levels", "3"},
+                                                           {"voxelize.voxel_size", "0.25"},
+                                                           {"voxelize.center", "camera"}};
+
+class VoxelScrollTest : public GpuTest, public ::testing::WithParamInterface<const char*> {};
+
+// The scratch buffer holding a whole level, and a fifth of one (levels split into pieces).
+INSTANTIATE_TEST_SUITE_P(ScratchSize, VoxelScrollTest, ::testing::Values("1", "5"));
+
+TEST_P(VoxelScrollTest, ScrollingEqualsFullRevoxelization) {
+  const scene::Scene scene = spread_scene();
+  std::map<std::string, std::string> params = kClipmapParams;
+  params["voxel.scratch_divisor"] = GetParam();
+  VoxelRun moving(scene, params);
+  // Level widths: 4, 8 and 16 m. Steps: a few voxels, sub-voxel, then 17 m (more than the
+  // coarsest level) in one frame, then back by a few voxels on every axis.
+  const std::vector<glm::vec3> path = {{0.0f, 0.0f, 0.0f},   {1.3f, -0.6f, 0.9f},
+                                       {1.35f, -0.6f, 0.9f}, {2.9f, 0.4f, -0.7f},
+                                       {19.9f, 0.4f, -0.7f}, {18.1f, 1.7f, 1.2f}};
+  for (size_t i = 0; i < path.size(); ++i) {
+    moving.render(path[i]);
+    const std::string skipped = moving.last_skip_reason();
+    const double moving_ms = moving.last_gpu_ms();
+    VoxelRun fresh(scene, kClipmapParams);
+    fresh.render(path[i]);
+    const Mismatch m = compare_volumes(moving.read(), fresh.read());
+    std::printf(
+        "[scroll %zu] camera (%.2f %.2f %.2f): %zu occupied of %zu, %zu differ; "
+        "incremental %.2f ms%s, full %.2f ms\n",
+        i, path[i].x, path[i].y, path[i].z, m.occupied, m.voxels, m.different, moving_ms,
+        skipped.empty() ? "" : (" (skipped: " + skipped + ")").c_str(), fresh.last_gpu_ms());
+    EXPECT_GT(m.occupied, 0u) << "step " << i;
+    EXPECT_EQ(m.different, 0u) << "step " << i;
+    if (i == 2) {
+      EXPECT_EQ(skipped, "static voxels up to date, window unchanged")
+          << "a move below the window snapping must not revoxelize";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace voxgi::test

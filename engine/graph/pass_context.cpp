@@ -52,6 +52,14 @@ const ResourceInfo& PassContext::info(std::string_view slot) const {
 uint64_t PassContext::resource_version(std::string_view slot) const {
   const SlotBinding* b = impl_.pass->binding(slot);
   if (!b) {
+    const PassTypeInfo* type = impl_.pass->type_info;
+    if (type) {
+      for (const auto* slots : {&type->inputs, &type->outputs}) {
+        for (const SlotSpec& s : *slots) {
+          if (s.name == slot) return 0;  // an optional slot left unbound
+        }
+      }
+    }
     throw std::invalid_argument("pass '" + impl_.pass->name + "': no slot '" + std::string(slot) +
                                 "'");
   }

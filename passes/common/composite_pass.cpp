@@ -1,5 +1,7 @@
 // Composite: direct radiance plus whatever indirect terms the graph provides. Indirect diffuse
-// and specular radiance are optional inputs, ambient occlusion (r channel) scales them.
+// and specular radiance are optional inputs, ambient occlusion (r channel) scales them. The
+// optional `indirect` output holds the indirect radiance exactly as added to the image, so that
+// benchmarks can compare it with a reference's indirect component.
 
 #include <memory>
 #include <optional>
@@ -38,6 +40,9 @@ class CompositePass final : public graph::Pass {
       if (bound) bindings.push_back({1 + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
       defines.push_back({kOptionalDefines[i], bound ? "1" : "0"});
     }
+    const bool indirect_out = ctx.has("indirect");
+    if (indirect_out) bindings.push_back({5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
+    defines.push_back({"HAS_INDIRECT_OUT", indirect_out ? "1" : "0"});
     pipeline_.emplace(make_common_compute(ctx, "composite.comp", bindings, sizeof(CompositePush),
                                           false, defines));
   }
@@ -55,6 +60,10 @@ class CompositePass final : public graph::Pass {
       writer.sampled_image(1 + i, r.view, r.layout, nearest);
     }
     writer.storage_image(4, out.view, out.layout);
+    if (ctx.has("indirect")) {
+      const graph::BoundResource& indirect = ctx.resource("indirect");
+      writer.storage_image(5, indirect.view, indirect.layout);
+    }
     const VkExtent3D extent = out.info->extent;
     pipeline_->bind(cmd);
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
@@ -79,7 +88,11 @@ void register_composite(graph::Registry& registry) {
       sampled_input("indirect_diffuse", "indirect diffuse radiance", true),
       sampled_input("indirect_specular", "indirect specular radiance", true),
       sampled_input("ambient_occlusion", "ambient occlusion in r (1 = unoccluded)", true)};
-  info.outputs = {radiance_output("radiance", "scene-referred linear radiance")};
+  graph::SlotSpec indirect_output = radiance_output(
+      "indirect", "the indirect radiance as added to the image (AO and scale applied)");
+  indirect_output.optional = true;
+  info.outputs = {radiance_output("radiance", "scene-referred linear radiance"),
+                  std::move(indirect_output)};
   info.params = {{"indirect_scale",
                   graph::ParamType::Float,
                   1.0,

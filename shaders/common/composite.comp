@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// direct + (indirect diffuse + indirect specular) * ambient occlusion * scale
+// direct + (indirect diffuse + indirect specular) * ambient occlusion * scale; optionally also
+// the indirect term alone, exactly as added.
 #include "lib/common.glsl"
 
 #ifndef HAS_DIFFUSE
@@ -11,6 +12,9 @@
 #endif
 #ifndef HAS_AO
 #define HAS_AO 0
+#endif
+#ifndef HAS_INDIRECT_OUT
+#define HAS_INDIRECT_OUT 0
 #endif
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -26,6 +30,9 @@ layout(set = 0, binding = 2) uniform sampler2D in_specular;
 layout(set = 0, binding = 3) uniform sampler2D in_ao;
 #endif
 layout(set = 0, binding = 4) writeonly uniform image2D out_radiance;
+#if HAS_INDIRECT_OUT
+layout(set = 0, binding = 5) writeonly uniform image2D out_indirect;
+#endif
 
 layout(push_constant) uniform Push {
   uvec2 size;
@@ -46,6 +53,10 @@ void main() {
 #if HAS_AO
   indirect *= clamp(texelFetch(in_ao, p, 0).r, 0.0, 1.0);
 #endif
-  vec3 result = texelFetch(in_direct, p, 0).rgb + indirect * pc.indirect_scale;
+  indirect *= pc.indirect_scale;
+  vec3 result = texelFetch(in_direct, p, 0).rgb + indirect;
   imageStore(out_radiance, p, vec4(sanitize_radiance(result), 1.0));
+#if HAS_INDIRECT_OUT
+  imageStore(out_indirect, p, vec4(sanitize_radiance(indirect), 1.0));
+#endif
 }

@@ -75,7 +75,8 @@ TEST_F(VoxgiCli, RendersTheCornellBoxWithTimings) {
   EXPECT_TRUE(stderr_has(r, {"voxgi: device: ", "voxgi: wrote render/out.png",
                              "voxgi: wrote render/out.exr", "voxgi: wrote t.json"}));
   // Written atomically: no temporary or probe files are left next to the images.
-  EXPECT_EQ(files_in(dir_ / "render"), (std::set<std::string>{"out.exr", "out.png"}));
+  EXPECT_EQ(files_in(dir_ / "render"),
+            (std::set<std::string>{"out.exr", "out-indirect.exr", "out.png"}));
   expect_png(dir_ / "render" / "out.png", 64, 64);
   expect_exr(dir_ / "render" / "out.exr");
 
@@ -157,7 +158,8 @@ TEST_F(VoxgiCli, FailedRunsKeepTheImagesOfAnEarlierRun) {
     EXPECT_FALSE(contains(r.err, "voxgi: wrote")) << r.describe();
     EXPECT_EQ(read_text(dir_ / "keep" / "out.png"), png) << "after " << extra.front();
     EXPECT_EQ(read_text(dir_ / "keep" / "out.exr"), exr) << "after " << extra.front();
-    EXPECT_EQ(files_in(dir_ / "keep"), (std::set<std::string>{"out.exr", "out.png"}));
+    EXPECT_EQ(files_in(dir_ / "keep"),
+              (std::set<std::string>{"out.exr", "out-indirect.exr", "out.png"}));
   }
 }
 

@@ -1,0 +1,216 @@
+// dvs.voxel_bounce: one indirect diffuse bounce per voxel by cone tracing the filtered
+// radiance volume from each voxel's normal hemisphere (Villegas, "Voxel Global Illumination").
+// Writes direct + albedo/pi * E into the radiance clipmap, which vct.filter filters again for
+// the next bounce or the final gather. graphs/dvs.json chains K of them (docs/dvs.md).
+
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/graph/pass.hpp"
+#include "passes/dvs/dvs_pipeline.hpp"
+#include "passes/dvs/passes.hpp"
+
+namespace voxgi::passes::dvs {
+namespace {
+
+using graph::Access;
+using graph::ResourceKind;
+
+// The filtered volumes lib/cone_trace.glsl reads: one isotropic or six directional ones
+// (+X, -X, +Y, -Y, +Z, -Z), as vct.filter writes them.
+constexpr const char* kFilteredSlot = "filtered";
+constexpr const char* kDirectionalSlots[] = {"pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"};
+
+struct BouncePush {
+  uint32_t size[3];
+  int32_t cones;
+  float step_factor;
+  float max_distance;
+  float normal_offset;
+  float start_offset;
+};
+
+class VoxelBouncePass final : public graph::Pass {
+ public:
+  void setup(graph::PassContext& ctx) override {
+    int directional = 0;
+    for (const char* slot : kDirectionalSlots) directional += ctx.has(slot) ? 1 : 0;
+    if (directional == 6) {
+      anisotropic_ = true;
+    } else if (ctx.has(kFilteredSlot) && directional == 0) {
+      anisotropic_ = false;
+    } else {
+      throw std::invalid_argument(
+          "pass '" + ctx.pass_name() +
+          "' field 'in': bind either 'filtered' (isotropic) or all six of pos_x, neg_x, pos_y, "
+          "neg_y, pos_z, neg_z (anisotropic) from vct.filter; " +
+          std::to_string(directional) + " directional volume(s) and " +
+          (ctx.has(kFilteredSlot) ? "'filtered'" : "no 'filtered'") + " are bound");
+    }
+    const VkExtent3D out = ctx.info("radiance").extent;
+    for (const char* slot : {"albedo", "normal", "direct"}) {
+      const VkExtent3D e = ctx.info(slot).extent;
+      if (e.width != out.width || e.height != out.height || e.depth != out.depth) {
+        throw std::invalid_argument("pass '" + ctx.pass_name() + "' slot '" + slot + "': '" +
+                                    ctx.info(slot).name + "' and the output 'radiance' ('" +
+                                    ctx.info("radiance").name +
+                                    "') must be the same clipmap layout");
+      }
+    }
+    const std::vector<gpu::Binding> bindings = {
+        {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0, anisotropic_ ? 6u : 1u},
+        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+        {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+        {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+        {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0},
+    };
+    pipeline_.emplace(make_dvs_compute(ctx, "voxel_bounce.comp", bindings, sizeof(BouncePush),
+                                       false, {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"}}));
+    inputs_.reset();
+  }
+
+  // Every bounce derives from the direct light and the voxels: while those are unchanged the
+  // previous result (persistent) is still the answer.
+  std::string skip_reason(const graph::PassContext& ctx) const override {
+    if (!ctx.info("radiance").persistent || ctx.frame().first_frame || ctx.params_changed() ||
+        inputs_.changed(ctx)) {
+      return {};
+    }
+    return "direct light and voxels unchanged";
+  }
+
+  void execute(graph::PassContext& ctx) override {
+    VkCommandBuffer cmd = ctx.cmd();
+    gpu::Context& gpu = ctx.gpu();
+    const VkSampler nearest = gpu.sampler(gpu::SamplerKind::NearestClamp);
+    const VkSampler repeat = gpu.sampler(gpu::SamplerKind::LinearRepeatMipmapped);
+    const graph::BoundResource& out = ctx.resource("radiance");
+
+    gpu::DescriptorWriter writer;
+    writer.storage_buffer(0, *ctx.resource("clipmap_info").buffer);
+    std::vector<VkDescriptorImageInfo> volumes;
+    if (anisotropic_) {
+      for (const char* slot : kDirectionalSlots) {
+        const graph::BoundResource& v = ctx.resource(slot);
+        volumes.push_back({repeat, v.view, v.layout});
+      }
+    } else {
+      const graph::BoundResource& v = ctx.resource(kFilteredSlot);
+      volumes.push_back({repeat, v.view, v.layout});
+    }
+    writer.image_array(1, volumes);
+    const char* inputs[] = {"albedo", "normal", "direct"};
+    for (uint32_t i = 0; i < 3; ++i) {
+      const graph::BoundResource& r = ctx.resource(inputs[i]);
+      writer.sampled_image(2 + i, r.view, r.layout, nearest);
+    }
+    writer.storage_image(5, storage_view(out), out.layout);
+
+    const VkExtent3D extent = out.info->extent;
+    const BouncePush push{{extent.width, extent.height, extent.depth},
+                          ctx.integer("diffuse_cones"),
+                          static_cast<float>(ctx.number("step_factor")),
+                          static_cast<float>(ctx.number("max_distance")),
+                          static_cast<float>(ctx.number("normal_offset")),
+                          static_cast<float>(ctx.number("start_offset"))};
+    pipeline_->bind(cmd);
+    writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
+    pipeline_->push_constants(cmd, push);
+    dispatch_over_volume(cmd, extent);
+    inputs_.store(ctx);
+  }
+
+ private:
+  bool anisotropic_ = false;
+  InputVersions inputs_{{"clipmap_info", "albedo", "normal", "direct"}};
+  std::optional<gpu::ComputePipeline> pipeline_;
+};
+
+graph::SlotSpec filtered_input(const char* name, std::string doc) {
+  return {name,
+          graph::kinds(ResourceKind::Clipmap),
+          Access::Sampled,
+          graph::kStageCompute,
+          {VK_FORMAT_R16G16B16A16_SFLOAT},
+          true,
+          std::move(doc)};
+}
+
+}  // namespace
+
+void register_voxel_bounce(graph::Registry& registry) {
+  graph::PassTypeInfo info;
+  info.type = "dvs.voxel_bounce";
+  info.doc =
+      "One indirect diffuse bounce per voxel: hemisphere cones around the voxel normal on the "
+      "filtered radiance volume; writes direct + albedo/pi * irradiance";
+  info.inputs = {
+      buffer_input("clipmap_info", "voxel.clipmap_info from common.voxelize"),
+      filtered_input(kFilteredSlot,
+                     "isotropic filtered volume from vct.filter (or bind the six "
+                     "directional volumes)"),
+  };
+  const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+  for (size_t i = 0; i < 6; ++i) {
+    info.inputs.push_back(filtered_input(kDirectionalSlots[i],
+                                         std::string("directional volume for cones travelling ") +
+                                             directions[i] + " from vct.filter (anisotropic)"));
+  }
+  info.inputs.push_back(clipmap_input("albedo", "voxel albedo (rgb) and opacity (a)"));
+  info.inputs.push_back(clipmap_input("normal", "voxel averaged normal (xyz), occupancy (w)"));
+  info.inputs.push_back(clipmap_input("direct", "direct radiance of dvs.voxel_lighting's 'direct'",
+                                      false, {VK_FORMAT_R16G16B16A16_SFLOAT}));
+  info.outputs = {radiance_volume_output(
+      "radiance", "voxel radiance with one more bounce: rgb outgoing diffuse radiance, a opacity")};
+  info.params = {
+      {"diffuse_cones",
+       graph::ParamType::Int,
+       6.0,
+       1.0,
+       16.0,
+       {},
+       "cones over each voxel's hemisphere (equal cosine-weighted cells; weights sum to pi)",
+       true},
+      {"step_factor",
+       graph::ParamType::Float,
+       1.0,
+       0.05,
+       4.0,
+       {},
+       "beta: step length / cone diameter",
+       true},
+      {"max_distance",
+       graph::ParamType::Float,
+       100.0,
+       0.0,
+       1e6,
+       {},
+       "longest cone in metres (cones also stop where they leave the clipmap)",
+       true},
+      {"normal_offset",
+       graph::ParamType::Float,
+       1.0,
+       0.0,
+       8.0,
+       {},
+       "cone origin offset along the voxel normal, in voxels of the voxel's level",
+       true},
+      {"start_offset",
+       graph::ParamType::Float,
+       1.0,
+       0.0,
+       8.0,
+       {},
+       "distance skipped at the start of each cone, in voxels (self-occlusion)",
+       true},
+  };
+  registry.add(std::move(info), [] { return std::make_unique<VoxelBouncePass>(); });
+}
+
+}  // namespace voxgi::passes::dvs

@@ -1,0 +1,234 @@
+// dvs.voxel_lighting: per-voxel direct lighting (Villegas, deferred voxel shading §2). Reads the
+// voxelized albedo, normal and emission clipmaps and writes the radiance clipmap of the voxel
+// contract (rgb outgoing diffuse radiance, a opacity). Only lights or voxels changing make it
+// run again: when the voxelization skipped and no light moved, it skips too, and when only
+// lights changed it re-lights the existing voxels without a revoxelization.
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/graph/pass.hpp"
+#include "passes/dvs/dvs_pipeline.hpp"
+#include "passes/dvs/passes.hpp"
+
+namespace voxgi::passes::dvs {
+namespace {
+
+using graph::Access;
+using graph::ResourceKind;
+
+// shaders/lib/shadow_data.glsl ShadowLight: six matrices, origin, info.
+constexpr VkDeviceSize kShadowLightSize = 6 * 64 + 32;
+constexpr uint32_t kShadowFacesPerLight = 6;
+
+enum Occlusion : uint32_t { kOcclusionNone = 0, kOcclusionShadowMap = 1, kOcclusionVoxelRays = 2 };
+
+struct LightingPush {
+  uint32_t size[3];
+  uint32_t occlusion;
+  float shadow_kappa;
+  float shadow_bias;
+  uint32_t shadow_slots;
+  uint32_t max_steps;
+};
+
+class VoxelLightingPass final : public graph::Pass {
+ public:
+  void setup(graph::PassContext& ctx) override {
+    const graph::ResourceInfo& info = ctx.info("clipmap_info");
+    if (info.buffer_size < kClipmapInfoSize) {
+      throw std::invalid_argument("pass '" + ctx.pass_name() + "' input 'clipmap_info': buffer '" +
+                                  info.name + "' holds " + std::to_string(info.buffer_size) +
+                                  " bytes, the clipmap info needs " +
+                                  std::to_string(kClipmapInfoSize));
+    }
+    has_emission_ = ctx.has("emission");
+    has_shadow_maps_ = ctx.has("shadow_maps") && ctx.has("shadow_matrices");
+    has_direct_ = ctx.has("direct");
+    check_same_extent(ctx, "albedo");
+    check_same_extent(ctx, "normal");
+    if (has_emission_) check_same_extent(ctx, "emission");
+    if (has_direct_) check_same_extent(ctx, "direct");
+    std::vector<gpu::Binding> bindings = {
+        {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+        {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0},
+    };
+    if (has_emission_) bindings.push_back({3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+    if (has_shadow_maps_) {
+      bindings.push_back({4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+      bindings.push_back({5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0});
+    }
+    if (has_direct_) bindings.push_back({7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
+    pipeline_.emplace(make_dvs_compute(ctx, "voxel_lighting.comp", bindings, sizeof(LightingPush),
+                                       true,
+                                       {{"HAS_EMISSION", has_emission_ ? "1" : "0"},
+                                        {"HAS_SHADOW_MAPS", has_shadow_maps_ ? "1" : "0"},
+                                        {"HAS_DIRECT_COPY", has_direct_ ? "1" : "0"}}));
+    inputs_.reset();
+  }
+
+  std::string skip_reason(const graph::PassContext& ctx) const override {
+    const graph::FrameInfo& frame = ctx.frame();
+    if (!outputs_persistent(ctx) || frame.first_frame || frame.lights_changed ||
+        ctx.params_changed() || inputs_.changed(ctx)) {
+      return {};
+    }
+    return "voxels, lights and shadow maps unchanged";
+  }
+
+  void execute(graph::PassContext& ctx) override {
+    VkCommandBuffer cmd = ctx.cmd();
+    gpu::Context& gpu = ctx.gpu();
+    const VkSampler nearest = gpu.sampler(gpu::SamplerKind::NearestClamp);
+    const graph::BoundResource& out = ctx.resource("radiance");
+    const graph::BoundResource& albedo = ctx.resource("albedo");
+    const graph::BoundResource& normal = ctx.resource("normal");
+
+    gpu::DescriptorWriter writer;
+    writer.storage_buffer(0, *ctx.resource("clipmap_info").buffer);
+    writer.sampled_image(1, albedo.view, albedo.layout, nearest);
+    writer.sampled_image(2, normal.view, normal.layout, nearest);
+    writer.storage_image(6, storage_view(out), out.layout);
+    if (has_emission_) {
+      const graph::BoundResource& emission = ctx.resource("emission");
+      writer.sampled_image(3, emission.view, emission.layout, nearest);
+    }
+    if (has_direct_) {
+      const graph::BoundResource& direct = ctx.resource("direct");
+      writer.storage_image(7, storage_view(direct), direct.layout);
+    }
+
+    const VkExtent3D extent = mip0_extent(*out.info);
+    LightingPush push{};
+    push.size[0] = extent.width;
+    push.size[1] = extent.height;
+    push.size[2] = extent.depth;
+    const std::string& occlusion = ctx.choice("occlusion");
+    push.occlusion = occlusion == "voxel_rays"   ? kOcclusionVoxelRays
+                     : occlusion == "shadow_map" ? kOcclusionShadowMap
+                                                 : kOcclusionNone;
+    push.shadow_kappa = static_cast<float>(ctx.number("shadow_kappa"));
+    push.shadow_bias = static_cast<float>(ctx.number("shadow_bias"));
+    push.max_steps = static_cast<uint32_t>(ctx.integer("shadow_max_steps"));
+    if (has_shadow_maps_) {
+      const graph::BoundResource& maps = ctx.resource("shadow_maps");
+      const graph::BoundResource& matrices = ctx.resource("shadow_matrices");
+      writer.sampled_image(4, maps.view, maps.layout, gpu.sampler(gpu::SamplerKind::ShadowCompare));
+      writer.storage_buffer(5, *matrices.buffer);
+      push.shadow_slots =
+          std::min<uint32_t>(maps.info->array_layers / kShadowFacesPerLight,
+                             static_cast<uint32_t>(matrices.info->buffer_size / kShadowLightSize));
+    }
+    pipeline_->bind(cmd);
+    writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
+    bind_scene_set(ctx, *pipeline_);
+    pipeline_->push_constants(cmd, push);
+    dispatch_over_volume(cmd, extent);
+    inputs_.store(ctx);
+  }
+
+ private:
+  static VkExtent3D mip0_extent(const graph::ResourceInfo& info) {
+    return info.mip > 0 ? gpu::mip_extent(info.extent, static_cast<uint32_t>(info.mip))
+                        : info.extent;
+  }
+
+  // Voxel volumes are addressed texel for texel, so they must match the output's layout.
+  static void check_same_extent(const graph::PassContext& ctx, const char* slot) {
+    const VkExtent3D a = mip0_extent(ctx.info("radiance"));
+    const VkExtent3D b = mip0_extent(ctx.info(slot));
+    if (a.width != b.width || a.height != b.height || a.depth != b.depth) {
+      throw std::invalid_argument(
+          "pass '" + ctx.pass_name() + "' slot '" + slot + "': volume '" + ctx.info(slot).name +
+          "' is " + std::to_string(b.width) + "x" + std::to_string(b.height) + "x" +
+          std::to_string(b.depth) + " but output 'radiance' ('" + ctx.info("radiance").name +
+          "') is " + std::to_string(a.width) + "x" + std::to_string(a.height) + "x" +
+          std::to_string(a.depth) + "; both must be the same clipmap layout");
+    }
+  }
+
+  bool outputs_persistent(const graph::PassContext& ctx) const {
+    return ctx.info("radiance").persistent && (!has_direct_ || ctx.info("direct").persistent);
+  }
+
+  bool has_emission_ = false;
+  bool has_shadow_maps_ = false;
+  bool has_direct_ = false;
+  InputVersions inputs_{
+      {"clipmap_info", "albedo", "normal", "emission", "shadow_maps", "shadow_matrices"}};
+  std::optional<gpu::ComputePipeline> pipeline_;
+};
+
+}  // namespace
+
+void register_voxel_lighting(graph::Registry& registry) {
+  graph::PassTypeInfo info;
+  info.type = "dvs.voxel_lighting";
+  info.doc =
+      "Deferred voxel shading: per-voxel direct lighting (point, spot, directional) with "
+      "normal-weighted attenuation, shadow-map or soft voxel-ray occlusion, plus emission";
+  info.inputs = {
+      buffer_input("clipmap_info", "voxel.clipmap_info from common.voxelize"),
+      clipmap_input("albedo", "voxel albedo (rgb) and opacity (a)"),
+      clipmap_input("normal", "voxel averaged normal (xyz), occupancy (w)"),
+      clipmap_input("emission", "voxel emitted radiance; unbound: none", true),
+      {"shadow_maps",
+       graph::kinds(ResourceKind::Image2D),
+       Access::Sampled,
+       graph::kStageCompute,
+       {VK_FORMAT_D32_SFLOAT},
+       true,
+       "from common.shadow_maps (occlusion = shadow_map)"},
+      buffer_input("shadow_matrices", "from common.shadow_maps (occlusion = shadow_map)", true),
+  };
+  info.outputs = {
+      radiance_volume_output("radiance",
+                             "voxel radiance: rgb outgoing diffuse radiance, a opacity (mip 0)"),
+      radiance_volume_output("direct", "the same values, kept for dvs.voxel_bounce", true),
+  };
+  info.params = {
+      {"occlusion",
+       graph::ParamType::Enum,
+       2.0,
+       0.0,
+       0.0,
+       {"none", "shadow_map", "voxel_rays"},
+       "light occlusion: none, the shadow maps, or soft voxel ray casting",
+       true},
+      {"shadow_kappa",
+       graph::ParamType::Float,
+       8.0,
+       0.0,
+       1e4,
+       {},
+       "voxel rays: occlusion gained per opaque voxel crossed at one voxel of distance (kappa)",
+       true},
+      {"shadow_bias",
+       graph::ParamType::Float,
+       1.0,
+       0.0,
+       8.0,
+       {},
+       "start of shadow rays and offset of shadow-map lookups from the voxel centre, in voxels",
+       true},
+      {"shadow_max_steps",
+       graph::ParamType::Int,
+       512.0,
+       1.0,
+       8192.0,
+       {},
+       "voxel rays: most samples per ray (half a voxel apart)",
+       true},
+  };
+  registry.add(std::move(info), [] { return std::make_unique<VoxelLightingPass>(); });
+}
+
+}  // namespace voxgi::passes::dvs

@@ -1,0 +1,406 @@
+// vct.cone_trace (indirect diffuse + ambient occlusion) and vct.cone_trace_specular (one
+// glossy cone): cone tracing through the filtered volumes (shaders/lib/cone_trace.glsl) per
+// G-buffer pixel, at full resolution or at half resolution followed by a depth- and
+// normal-aware upsample through the graph-provided scratch image `half_res`.
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/graph/pass.hpp"
+#include "passes/vct/passes.hpp"
+#include "passes/vct/vct_pipeline.hpp"
+
+namespace voxgi::passes::vct {
+namespace {
+
+constexpr double kRadians = 3.14159265358979323846 / 180.0;
+
+struct TracePush {
+  uint32_t width;
+  uint32_t height;
+  int32_t diffuse_cones;
+  float step_factor;
+  float max_distance;
+  float ao_falloff;
+  float normal_offset;
+  float start_offset;
+  float shadow_tan_half_angle;
+};
+
+struct UpsamplePush {
+  uint32_t width;
+  uint32_t height;
+  float depth_tolerance;
+  float normal_power;
+};
+
+// Storage-image format qualifier of the single-channel outputs (AO, shadow).
+const char* scalar_format_qualifier(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R8_UNORM:
+      return "r8";
+    case VK_FORMAT_R16_SFLOAT:
+      return "r16f";
+    case VK_FORMAT_R8G8B8A8_UNORM:
+      return "rgba8";
+    default:
+      return "rgba16f";
+  }
+}
+
+// Bindings of trace.comp and upsample.comp (set 0).
+constexpr uint32_t kBindingClipmapInfo = 0;
+constexpr uint32_t kBindingVolumes = 1;
+constexpr uint32_t kBindingFrame = 2;
+constexpr uint32_t kBindingGbuffer = 3;  // base colour, normal, material, depth: 3..6
+constexpr uint32_t kBindingResult = 7;
+constexpr uint32_t kBindingAo = 8;
+constexpr uint32_t kBindingScratch = 9;
+constexpr uint32_t kBindingShadow = 10;
+
+class ConeTracePass final : public graph::Pass {
+ public:
+  explicit ConeTracePass(bool specular) : specular_(specular) {}
+
+  void setup(graph::PassContext& ctx) override {
+    anisotropic_ = bound_filtered_volumes(ctx) == FilteredVolumes::Anisotropic;
+    if (!sampler_) sampler_ = std::make_unique<VolumeSampler>(ctx.gpu());
+    half_ = ctx.choice("resolution") == "half";
+    has_ao_ = !specular_ && ctx.has("ao");
+    has_shadow_ = !specular_ && ctx.has("shadow");
+    if (half_ && !ctx.has("half_res")) {
+      throw std::invalid_argument("pass '" + ctx.pass_name() +
+                                  "' field 'resolution': 'half' needs the output slot 'half_res' "
+                                  "bound to an rgba16f image of half the viewport");
+    }
+    const std::vector<gpu::ShaderDefine> defines = {
+        {"SPECULAR", specular_ ? "1" : "0"},
+        {"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
+        {"HAS_AO", has_ao_ ? "1" : "0"},
+        {"AO_FORMAT", has_ao_ ? scalar_format_qualifier(ctx.info("ao").format) : "r16f"},
+        {"SHADOW_FORMAT",
+         has_shadow_ ? scalar_format_qualifier(ctx.info("shadow").format) : "r16f"}};
+    std::vector<gpu::Binding> gbuffer = {{kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0}};
+    for (uint32_t i = 0; i < 4; ++i) {
+      gbuffer.push_back({kBindingGbuffer + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+    }
+    const std::vector<gpu::Binding> volumes = {
+        {kBindingClipmapInfo, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
+        {kBindingVolumes, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0, anisotropic_ ? 6u : 1u}};
+    const gpu::Binding result = {kBindingResult, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0};
+    const gpu::Binding storage_ao = {kBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0};
+    const gpu::Binding storage_shadow = {kBindingShadow, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0};
+
+    // The shadow cone runs inside the main trace at full resolution, and in a full-resolution
+    // dispatch of its own at half resolution (a shadow edge must not be upsampled away).
+    const bool shadow_in_trace = has_shadow_ && !half_;
+    std::vector<gpu::Binding> trace = gbuffer;
+    trace.insert(trace.end(), volumes.begin(), volumes.end());
+    trace.push_back(result);
+    if (has_ao_ && !half_) trace.push_back(storage_ao);
+    if (shadow_in_trace) trace.push_back(storage_shadow);
+    std::vector<gpu::ShaderDefine> trace_defines = defines;
+    trace_defines.push_back({"HALF", half_ ? "1" : "0"});
+    trace_defines.push_back({"HAS_SHADOW", shadow_in_trace ? "1" : "0"});
+    trace_.emplace(make_vct_compute(ctx, "trace.comp", trace, sizeof(TracePush), shadow_in_trace,
+                                    trace_defines));
+
+    shadow_.reset();
+    if (has_shadow_ && half_) {
+      std::vector<gpu::Binding> shadow = gbuffer;
+      shadow.insert(shadow.end(), volumes.begin(), volumes.end());
+      shadow.push_back(storage_shadow);
+      std::vector<gpu::ShaderDefine> shadow_defines = defines;
+      shadow_defines.push_back({"HAS_SHADOW", "1"});
+      shadow_defines.push_back({"SHADOW_ONLY", "1"});
+      shadow_.emplace(
+          make_vct_compute(ctx, "trace.comp", shadow, sizeof(TracePush), true, shadow_defines));
+    }
+
+    upsample_.reset();
+    if (half_) {
+      std::vector<gpu::Binding> upsample = gbuffer;
+      upsample.push_back(result);
+      upsample.push_back({kBindingScratch, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+      if (has_ao_) upsample.push_back(storage_ao);
+      upsample_.emplace(
+          make_vct_compute(ctx, "upsample.comp", upsample, sizeof(UpsamplePush), false, defines));
+    }
+  }
+
+  void execute(graph::PassContext& ctx) override {
+    VkCommandBuffer cmd = ctx.cmd();
+    const VkSampler nearest = ctx.gpu().sampler(gpu::SamplerKind::NearestClamp);
+    const graph::BoundResource& result = ctx.resource(specular_ ? "specular" : "diffuse");
+
+    auto bind_gbuffer = [&](gpu::DescriptorWriter& writer) {
+      writer.uniform_buffer(kBindingFrame, *ctx.frame().uniform_buffer);
+      const char* slots[] = {"base_color", "normal", "material", "depth"};
+      for (uint32_t i = 0; i < 4; ++i) {
+        const graph::BoundResource& r = ctx.resource(slots[i]);
+        writer.sampled_image(kBindingGbuffer + i, r.view, r.layout, nearest);
+      }
+    };
+    auto bind_volumes = [&](gpu::DescriptorWriter& writer) {
+      writer.storage_buffer(kBindingClipmapInfo, *ctx.resource("clipmap_info").buffer);
+      std::vector<VkDescriptorImageInfo> images;
+      const VkSampler repeat = sampler_->handle();
+      if (anisotropic_) {
+        for (const char* slot : kDirectionalSlots) {
+          const graph::BoundResource& v = ctx.resource(slot);
+          images.push_back({repeat, v.view, v.layout});
+        }
+      } else {
+        const graph::BoundResource& v = ctx.resource(kFilteredSlot);
+        images.push_back({repeat, v.view, v.layout});
+      }
+      writer.image_array(kBindingVolumes, images);
+    };
+    auto bind_storage = [&](gpu::DescriptorWriter& writer, uint32_t binding, const char* slot) {
+      const graph::BoundResource& r = ctx.resource(slot);
+      writer.storage_image(binding, r.view, r.layout);
+    };
+    auto push_for = [&](VkExtent3D e) {
+      const double shadow_angle = specular_ ? 0.0 : ctx.number("shadow_cone_angle") * kRadians;
+      return TracePush{e.width,
+                       e.height,
+                       specular_ ? 1 : ctx.integer("diffuse_cones"),
+                       static_cast<float>(ctx.number("step_factor")),
+                       static_cast<float>(ctx.number("max_distance")),
+                       specular_ ? 0.0f : static_cast<float>(ctx.number("ao_falloff")),
+                       static_cast<float>(ctx.number("normal_offset")),
+                       static_cast<float>(ctx.number("start_offset")),
+                       static_cast<float>(std::tan(shadow_angle))};
+    };
+
+    const graph::BoundResource& traced = half_ ? ctx.resource("half_res") : result;
+    {
+      gpu::DescriptorWriter writer;
+      bind_gbuffer(writer);
+      bind_volumes(writer);
+      writer.storage_image(kBindingResult, traced.view, traced.layout);
+      if (has_ao_ && !half_) bind_storage(writer, kBindingAo, "ao");
+      if (has_shadow_ && !half_) bind_storage(writer, kBindingShadow, "shadow");
+      const VkExtent3D e = traced.info->extent;
+      trace_->bind(cmd);
+      writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, trace_->layout());
+      if (has_shadow_ && !half_) bind_scene_set(ctx, *trace_);
+      trace_->push_constants(cmd, push_for(e));
+      vkCmdDispatch(cmd, groups(e.width, kTile), groups(e.height, kTile), 1);
+    }
+    if (shadow_) {
+      gpu::DescriptorWriter writer;
+      bind_gbuffer(writer);
+      bind_volumes(writer);
+      bind_storage(writer, kBindingShadow, "shadow");
+      const VkExtent3D e = ctx.info("shadow").extent;
+      shadow_->bind(cmd);
+      writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadow_->layout());
+      bind_scene_set(ctx, *shadow_);
+      shadow_->push_constants(cmd, push_for(e));
+      vkCmdDispatch(cmd, groups(e.width, kTile), groups(e.height, kTile), 1);
+    }
+    if (!half_) return;
+
+    ctx.barrier_within_pass("half_res");
+    gpu::DescriptorWriter writer;
+    bind_gbuffer(writer);
+    writer.storage_image(kBindingResult, result.view, result.layout);
+    const graph::BoundResource& scratch = ctx.resource("half_res");
+    writer.sampled_image(kBindingScratch, scratch.view, scratch.layout, nearest);
+    if (has_ao_) bind_storage(writer, kBindingAo, "ao");
+    const VkExtent3D e = result.info->extent;
+    upsample_->bind(cmd);
+    writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, upsample_->layout());
+    upsample_->push_constants(
+        cmd,
+        UpsamplePush{e.width, e.height, static_cast<float>(ctx.number("depth_tolerance")), 8.0f});
+    vkCmdDispatch(cmd, groups(e.width, kTile), groups(e.height, kTile), 1);
+  }
+
+ private:
+  bool specular_ = false;
+  bool anisotropic_ = true;
+  bool half_ = false;
+  bool has_ao_ = false;
+  bool has_shadow_ = false;
+  std::unique_ptr<VolumeSampler> sampler_;
+  std::optional<gpu::ComputePipeline> trace_;
+  std::optional<gpu::ComputePipeline> shadow_;
+  std::optional<gpu::ComputePipeline> upsample_;
+};
+
+graph::SlotSpec filtered_input(const char* name, std::string doc) {
+  return {name,
+          graph::kinds(graph::ResourceKind::Clipmap),
+          graph::Access::Sampled,
+          graph::kStageCompute,
+          {VK_FORMAT_R16G16B16A16_SFLOAT},
+          true,
+          std::move(doc)};
+}
+
+graph::SlotSpec image_output(const char* name, const char* doc, bool optional,
+                             std::vector<VkFormat> formats) {
+  return {name,
+          graph::kinds(graph::ResourceKind::Image2D),
+          graph::Access::StorageWrite,
+          graph::kStageCompute,
+          std::move(formats),
+          optional,
+          doc};
+}
+
+std::vector<graph::SlotSpec> trace_inputs() {
+  std::vector<graph::SlotSpec> inputs = {
+      clipmap_info_input(),
+      filtered_input(kFilteredSlot,
+                     "isotropic filtered volume from vct.filter (or bind the six "
+                     "directional volumes)")};
+  const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+  for (size_t i = 0; i < kDirectionalSlots.size(); ++i) {
+    inputs.push_back(filtered_input(kDirectionalSlots[i],
+                                    std::string("directional volume for cones travelling ") +
+                                        directions[i] + " from vct.filter (anisotropic)"));
+  }
+  inputs.push_back(sampled_2d("base_color", "G-buffer base colour"));
+  inputs.push_back(sampled_2d("normal", "G-buffer normal + roughness"));
+  inputs.push_back(sampled_2d("material", "G-buffer metallic, roughness, occlusion, coverage"));
+  inputs.push_back(sampled_2d("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}));
+  return inputs;
+}
+
+std::vector<graph::ParamSpec> trace_params(bool specular) {
+  std::vector<graph::ParamSpec> params;
+  if (!specular) {
+    params.push_back({"diffuse_cones",
+                      graph::ParamType::Int,
+                      6.0,
+                      1.0,
+                      16.0,
+                      {},
+                      "diffuse cones over the hemisphere (equal cosine-weighted cells; weights "
+                      "sum to pi)",
+                      true});
+    params.push_back({"shadow_cone_angle",
+                      graph::ParamType::Float,
+                      3.0,
+                      0.1,
+                      45.0,
+                      {},
+                      "half angle (degrees) of the soft-shadow cone towards the first light "
+                      "(output 'shadow'); wider cones give softer shadows",
+                      true});
+    params.push_back({"ao_falloff",
+                      graph::ParamType::Float,
+                      0.1,
+                      0.0,
+                      100.0,
+                      {},
+                      "lambda of the AO weight 1/(1 + lambda r), r = cone radius in level-0 "
+                      "voxels (0: occlusion at any distance counts fully)",
+                      true});
+  }
+  params.push_back({"step_factor",
+                    graph::ParamType::Float,
+                    1.0,
+                    0.05,
+                    4.0,
+                    {},
+                    "beta: step length / cone diameter; opacity is corrected for the step, so "
+                    "smaller values cost more, not change the brightness",
+                    true});
+  params.push_back({"max_distance",
+                    graph::ParamType::Float,
+                    100.0,
+                    0.0,
+                    1e6,
+                    {},
+                    "longest cone in metres (cones also stop where they leave the clipmap)",
+                    true});
+  params.push_back({"normal_offset",
+                    graph::ParamType::Float,
+                    1.0,
+                    0.0,
+                    8.0,
+                    {},
+                    "cone origin offset along the normal, in voxels of the finest level there",
+                    true});
+  params.push_back({"start_offset",
+                    graph::ParamType::Float,
+                    1.0,
+                    0.0,
+                    8.0,
+                    {},
+                    "distance skipped at the start of each cone, in voxels (self-occlusion)",
+                    true});
+  params.push_back({"resolution",
+                    graph::ParamType::Enum,
+                    0.0,
+                    0.0,
+                    0.0,
+                    {"full", "half"},
+                    "full: a trace per pixel; half: per 2x2 block into 'half_res', then a depth- "
+                    "and normal-aware upsample",
+                    false});
+  params.push_back({"depth_tolerance",
+                    graph::ParamType::Float,
+                    0.05,
+                    0.001,
+                    1.0,
+                    {},
+                    "half resolution: relative view-depth difference at which an upsampling tap "
+                    "weighs one half",
+                    true});
+  return params;
+}
+
+}  // namespace
+
+void register_cone_trace(graph::Registry& registry) {
+  graph::PassTypeInfo info;
+  info.type = "vct.cone_trace";
+  info.doc =
+      "Indirect diffuse (c_diff/pi x cone-traced irradiance) and ambient occlusion by diffuse "
+      "cones through the filtered voxel volumes";
+  info.inputs = trace_inputs();
+  info.outputs = {
+      image_output("diffuse", "indirect diffuse outgoing radiance", false,
+                   {VK_FORMAT_R16G16B16A16_SFLOAT}),
+      image_output("ao", "ambient-occlusion visibility (1 = open)", true,
+                   {VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM,
+                    VK_FORMAT_R16G16B16A16_SFLOAT}),
+      image_output("half_res", "scratch for resolution 'half' (rgba16f, viewport/2)", true,
+                   {VK_FORMAT_R16G16B16A16_SFLOAT}),
+      image_output("shadow",
+                   "soft-shadow cone visibility of the scene's first light (1 = lit), full "
+                   "resolution; unbound: not traced",
+                   true,
+                   {VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM,
+                    VK_FORMAT_R16G16B16A16_SFLOAT})};
+  info.params = trace_params(false);
+  registry.add(std::move(info), [] { return std::make_unique<ConeTracePass>(false); });
+}
+
+void register_cone_trace_specular(graph::Registry& registry) {
+  graph::PassTypeInfo info;
+  info.type = "vct.cone_trace_specular";
+  info.doc =
+      "Indirect specular: one cone along the reflection, aperture from GGX roughness, times "
+      "Schlick's Fresnel";
+  info.inputs = trace_inputs();
+  info.outputs = {image_output("specular", "indirect specular outgoing radiance", false,
+                               {VK_FORMAT_R16G16B16A16_SFLOAT}),
+                  image_output("half_res", "scratch for resolution 'half' (rgba16f, viewport/2)",
+                               true, {VK_FORMAT_R16G16B16A16_SFLOAT})};
+  info.params = trace_params(true);
+  registry.add(std::move(info), [] { return std::make_unique<ConeTracePass>(true); });
+}
+
+}  // namespace voxgi::passes::vct

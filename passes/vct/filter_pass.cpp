@@ -1,0 +1,170 @@
+// vct.filter: turns the radiance clipmap into the filtered volumes the cone tracer samples
+// (layout documented at the top of shaders/lib/cone_trace.glsl): premultiplied radiance and
+// opacity, mip 0 of every level made consistent with the finer level it contains, then a full
+// mip chain per level. Isotropic mode writes one volume; anisotropic mode six directional
+// volumes built by front-to-back compositing along each axis (Crassin; seed 001 section 3).
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/graph/pass.hpp"
+#include "passes/vct/passes.hpp"
+#include "passes/vct/vct_pipeline.hpp"
+
+namespace voxgi::passes::vct {
+namespace {
+
+struct FilterPush {
+  int32_t stage;  // 0: mip 0 of one level, 1: one mip of all levels
+  int32_t level;
+  int32_t mip;
+  int32_t pad;
+};
+
+constexpr uint32_t kLocal = 4;
+
+class FilterPass final : public graph::Pass {
+ public:
+  void setup(graph::PassContext& ctx) override {
+    anisotropic_ = require_filtered_volumes(ctx, ctx.choice("mode") == "anisotropic") ==
+                   FilteredVolumes::Anisotropic;
+    volume_slots_.clear();
+    if (anisotropic_) {
+      for (const char* slot : kDirectionalSlots) volume_slots_.push_back(slot);
+    } else {
+      volume_slots_.push_back(kFilteredSlot);
+    }
+    const graph::ResourceInfo& radiance = ctx.info("radiance");
+    for (const std::string& slot : volume_slots_) {
+      const graph::ResourceInfo& out = ctx.info(slot);
+      if (out.extent.width != radiance.extent.width || out.extent.depth != radiance.extent.depth ||
+          out.clipmap_levels != radiance.clipmap_levels) {
+        throw std::invalid_argument("pass '" + ctx.pass_name() + "' field 'out." + slot +
+                                    "': the filtered volume '" + out.name +
+                                    "' must have the resolution and levels of the radiance "
+                                    "clipmap '" +
+                                    radiance.name + "'");
+      }
+    }
+    std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
+                                          {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0}};
+    for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
+      bindings.push_back({2 + 2 * v, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
+      bindings.push_back({3 + 2 * v, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
+    }
+    pipeline_.emplace(make_vct_compute(ctx, "filter.comp", bindings, sizeof(FilterPush), false,
+                                       {{"ANISOTROPIC", anisotropic_ ? "1" : "0"}}));
+    versions_.forget();
+  }
+
+  std::string skip_reason(const graph::PassContext& ctx) const override {
+    if (ctx.params_changed()) return {};
+    return versions_.changed(ctx).empty() ? "radiance volume unchanged" : std::string();
+  }
+
+  void execute(graph::PassContext& ctx) override {
+    VkCommandBuffer cmd = ctx.cmd();
+    const graph::BoundResource& info = ctx.resource("clipmap_info");
+    const graph::BoundResource& radiance = ctx.resource("radiance");
+    const uint32_t r = radiance.info->extent.width;
+    const uint32_t levels = std::max(1u, radiance.info->clipmap_levels);
+    uint32_t mips = full_mip_count_of(r);
+    for (const std::string& slot : volume_slots_) {
+      mips = std::min(mips, ctx.info(slot).mip_levels);
+    }
+    pipeline_->bind(cmd);
+    auto push = [&](uint32_t src_mip, uint32_t dst_mip) {
+      gpu::DescriptorWriter writer;
+      writer.storage_buffer(0, *info.buffer);
+      writer.sampled_image(1, radiance.view, radiance.layout,
+                           ctx.gpu().sampler(gpu::SamplerKind::NearestClamp));
+      for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
+        const graph::BoundResource& out = ctx.resource(volume_slots_[v]);
+        writer.storage_image(2 + 2 * v, out.image->view(src_mip), out.layout);
+        writer.storage_image(3 + 2 * v, out.image->view(dst_mip), out.layout);
+      }
+      writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
+    };
+    auto barrier = [&] {
+      for (const std::string& slot : volume_slots_) ctx.barrier_within_pass(slot);
+    };
+    push(0, 0);
+    for (uint32_t level = 0; level < levels; ++level) {
+      pipeline_->push_constants(cmd, FilterPush{0, static_cast<int32_t>(level), 0, 0});
+      const uint32_t g = groups(r, kLocal);
+      vkCmdDispatch(cmd, g, g, g);
+      barrier();
+    }
+    for (uint32_t mip = 1; mip < mips; ++mip) {
+      push(mip - 1, mip);
+      const uint32_t rm = std::max(1u, r >> mip);
+      pipeline_->push_constants(cmd, FilterPush{1, 0, static_cast<int32_t>(mip), 0});
+      vkCmdDispatch(cmd, groups(rm, kLocal), groups(rm, kLocal), groups(rm * levels, kLocal));
+      barrier();
+    }
+    versions_.remember(ctx);
+  }
+
+ private:
+  static uint32_t full_mip_count_of(uint32_t r) {
+    uint32_t count = 1;
+    while ((r >> count) > 0) ++count;
+    return count;
+  }
+
+  bool anisotropic_ = true;
+  std::vector<std::string> volume_slots_;
+  std::optional<gpu::ComputePipeline> pipeline_;
+  InputVersions versions_{{"clipmap_info", "radiance"}};
+};
+
+graph::SlotSpec filtered_output(const char* name, std::string doc) {
+  return {name,
+          graph::kinds(graph::ResourceKind::Clipmap),
+          graph::Access::StorageReadWrite,  // coarser levels read the finer ones just written
+          graph::kStageCompute,
+          {VK_FORMAT_R16G16B16A16_SFLOAT},
+          true,
+          std::move(doc)};
+}
+
+}  // namespace
+
+void register_filter(graph::Registry& registry) {
+  graph::PassTypeInfo info;
+  info.type = "vct.filter";
+  info.doc =
+      "Filters the radiance clipmap into the cone tracer's volumes: premultiplied radiance and "
+      "opacity with per-level mips, levels kept consistent; isotropic or six anisotropic "
+      "directions";
+  info.inputs = {clipmap_info_input(),
+                 sampled_clipmap("radiance",
+                                 "radiance clipmap (rgb outgoing radiance, a opacity) from "
+                                 "vct.inject or dvs.voxel_lighting; only mip 0 is read",
+                                 false, {VK_FORMAT_R16G16B16A16_SFLOAT})};
+  info.outputs = {filtered_output("filtered", "isotropic filtered volume (mode isotropic)")};
+  const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+  for (size_t i = 0; i < kDirectionalSlots.size(); ++i) {
+    info.outputs.push_back(filtered_output(
+        kDirectionalSlots[i], std::string("directional volume seen by cones travelling ") +
+                                  directions[i] + " (mode anisotropic)"));
+  }
+  info.params = {{"mode",
+                  graph::ParamType::Enum,
+                  1.0,
+                  0.0,
+                  0.0,
+                  {"isotropic", "anisotropic"},
+                  "isotropic: one box-filtered volume; anisotropic: six directional volumes "
+                  "(front-to-back along each axis), needs the six pos_x..neg_z outputs",
+                  false}};
+  registry.add(std::move(info), [] { return std::make_unique<FilterPass>(); });
+}
+
+}  // namespace voxgi::passes::vct

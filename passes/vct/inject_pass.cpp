@@ -1,0 +1,167 @@
+// vct.inject: direct light into the radiance clipmap. Each occupied voxel gets the outgoing
+// Lambert radiance albedo/pi x sum(light irradiance x cos x shadow-map visibility) plus its
+// emission, rgba16f and sanitized (shaders/vct/inject.comp states the rules). The pass skips
+// when none of its inputs was rewritten and the lights did not change.
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "engine/gpu/buffer.hpp"
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/image.hpp"
+#include "engine/gpu/pipeline.hpp"
+#include "engine/graph/pass.hpp"
+#include "passes/vct/passes.hpp"
+#include "passes/vct/vct_pipeline.hpp"
+
+namespace voxgi::passes::vct {
+namespace {
+
+// Layout of common.shadow_maps' per-light data (shaders/lib/shadow_data.glsl): six view-
+// projection matrices, origin and info; six array layers per light.
+constexpr VkDeviceSize kShadowLightBytes = 6 * 64 + 32;
+constexpr uint32_t kShadowFacesPerLight = 6;
+
+struct InjectPush {
+  uint32_t shadow_slots;
+  float normal_offset;
+  uint32_t shadows_enabled;
+  float pad;
+};
+
+constexpr uint32_t kLocal = 4;
+
+// Voxel volumes are read as floating-point RGBA.
+const std::vector<VkFormat> kFloatRgba = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT,
+                                          VK_FORMAT_R32G32B32A32_SFLOAT};
+
+class InjectPass final : public graph::Pass {
+ public:
+  void setup(graph::PassContext& ctx) override {
+    has_shadows_ = ctx.has("shadow_maps") && ctx.has("shadow_matrices");
+    has_emission_ = ctx.has("emission");
+    const graph::ResourceInfo& out = ctx.info("radiance");
+    for (const char* slot : {"albedo", "normal", "emission"}) {
+      if (!ctx.has(slot)) continue;
+      const graph::ResourceInfo& in = ctx.info(slot);
+      if (in.extent.width != out.extent.width || in.extent.depth != out.extent.depth) {
+        throw std::invalid_argument(
+            "pass '" + ctx.pass_name() + "' field 'in." + slot + "': clipmap '" + in.name +
+            "' must have the resolution and levels of 'out.radiance' ('" + out.name + "')");
+      }
+    }
+    std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
+                                          {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+                                          {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+                                          {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0}};
+    if (has_emission_) bindings.push_back({3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+    if (has_shadows_) {
+      bindings.push_back({4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+      bindings.push_back({5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0});
+    }
+    pipeline_.emplace(make_vct_compute(
+        ctx, "inject.comp", bindings, sizeof(InjectPush), true,
+        {{"HAS_SHADOWS", has_shadows_ ? "1" : "0"}, {"HAS_EMISSION", has_emission_ ? "1" : "0"}}));
+    versions_.forget();
+  }
+
+  std::string skip_reason(const graph::PassContext& ctx) const override {
+    if (ctx.params_changed() || ctx.frame().lights_changed) return {};
+    return versions_.changed(ctx).empty() ? "voxels, shadow maps and lights unchanged"
+                                          : std::string();
+  }
+
+  void execute(graph::PassContext& ctx) override {
+    VkCommandBuffer cmd = ctx.cmd();
+    gpu::Context& gpu = ctx.gpu();
+    const VkSampler nearest = gpu.sampler(gpu::SamplerKind::NearestClamp);
+    const graph::BoundResource& info = ctx.resource("clipmap_info");
+    const graph::BoundResource& albedo = ctx.resource("albedo");
+    const graph::BoundResource& normal = ctx.resource("normal");
+    const graph::BoundResource& out = ctx.resource("radiance");
+    gpu::DescriptorWriter writer;
+    writer.storage_buffer(0, *info.buffer)
+        .sampled_image(1, albedo.view, albedo.layout, nearest)
+        .sampled_image(2, normal.view, normal.layout, nearest)
+        .storage_image(6, out.image->view(0), out.layout);
+    if (has_emission_) {
+      const graph::BoundResource& emission = ctx.resource("emission");
+      writer.sampled_image(3, emission.view, emission.layout, nearest);
+    }
+    InjectPush push{0, static_cast<float>(ctx.number("normal_offset")),
+                    ctx.flag("shadows") ? 1u : 0u, 0.0f};
+    if (has_shadows_) {
+      const graph::BoundResource& maps = ctx.resource("shadow_maps");
+      const graph::BoundResource& matrices = ctx.resource("shadow_matrices");
+      writer.sampled_image(4, maps.view, maps.layout, gpu.sampler(gpu::SamplerKind::ShadowCompare));
+      writer.storage_buffer(5, *matrices.buffer);
+      push.shadow_slots =
+          std::min<uint32_t>(maps.info->array_layers / kShadowFacesPerLight,
+                             static_cast<uint32_t>(matrices.info->buffer_size / kShadowLightBytes));
+    }
+    pipeline_->bind(cmd);
+    writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
+    bind_scene_set(ctx, *pipeline_);
+    pipeline_->push_constants(cmd, push);
+    const VkExtent3D e = out.info->extent;
+    vkCmdDispatch(cmd, groups(e.width, kLocal), groups(e.height, kLocal), groups(e.depth, kLocal));
+    versions_.remember(ctx);
+  }
+
+ private:
+  bool has_shadows_ = false;
+  bool has_emission_ = false;
+  std::optional<gpu::ComputePipeline> pipeline_;
+  InputVersions versions_{
+      {"clipmap_info", "albedo", "normal", "emission", "shadow_maps", "shadow_matrices"}};
+};
+
+}  // namespace
+
+void register_inject(graph::Registry& registry) {
+  graph::PassTypeInfo info;
+  info.type = "vct.inject";
+  info.doc =
+      "Direct light into the radiance clipmap: albedo/pi x light irradiance x cos x shadow-map "
+      "visibility per voxel, plus emission";
+  info.inputs = {
+      clipmap_info_input(),
+      sampled_clipmap("albedo", "voxel albedo (rgb linear) and opacity (a)", false, kFloatRgba),
+      sampled_clipmap("normal", "voxel averaged normal (xyz; ~0 where faces cancel)", false,
+                      kFloatRgba),
+      sampled_clipmap("emission", "voxel emitted radiance (rgb); unbound: none", true, kFloatRgba),
+      sampled_2d("shadow_maps", "from common.shadow_maps; unbound: lights are unshadowed", true,
+                 {VK_FORMAT_D32_SFLOAT}),
+      {"shadow_matrices",
+       graph::kinds(graph::ResourceKind::Buffer),
+       graph::Access::StorageRead,
+       graph::kStageCompute,
+       {},
+       true,
+       "from common.shadow_maps"},
+  };
+  info.outputs = {{"radiance",
+                   graph::kinds(graph::ResourceKind::Clipmap),
+                   graph::Access::StorageWrite,
+                   graph::kStageCompute,
+                   {VK_FORMAT_R16G16B16A16_SFLOAT},
+                   false,
+                   "radiance clipmap: rgb outgoing radiance, a opacity (mip 0 written)"}};
+  info.params = {
+      {"shadows", graph::ParamType::Bool, 1.0, 0.0, 1.0, {}, "test the shadow maps", true},
+      {"normal_offset",
+       graph::ParamType::Float,
+       1.0,
+       0.0,
+       4.0,
+       {},
+       "offset of the shadow lookup from the voxel centre along its normal (towards the light "
+       "for normal-less voxels), in voxels",
+       true},
+  };
+  registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });
+}
+
+}  // namespace voxgi::passes::vct

@@ -1,0 +1,138 @@
+#include "passes/vct/vct_pipeline.hpp"
+
+#include <stdexcept>
+
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/error.hpp"
+#include "engine/scene/gpu_scene.hpp"
+
+namespace voxgi::passes::vct {
+
+gpu::ComputePipeline make_vct_compute(const graph::PassContext& ctx, const std::string& file,
+                                      std::vector<gpu::Binding> bindings,
+                                      uint32_t push_constant_size, bool with_scene_set,
+                                      std::vector<gpu::ShaderDefine> defines) {
+  gpu::PipelineLayoutDesc layout;
+  layout.bindings = std::move(bindings);
+  for (gpu::Binding& binding : layout.bindings) binding.stages = VK_SHADER_STAGE_COMPUTE_BIT;
+  if (with_scene_set) layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};
+  layout.push_constant_size = push_constant_size;
+  layout.push_constant_stages = VK_SHADER_STAGE_COMPUTE_BIT;
+  gpu::ShaderRequest request;
+  request.path = "vct/" + file;
+  request.defines = std::move(defines);
+  return gpu::ComputePipeline(ctx.gpu(), ctx.shaders().compile(request), layout, ctx.pass_name());
+}
+
+void bind_scene_set(const graph::PassContext& ctx, const gpu::ComputePipeline& pipeline) {
+  VkDescriptorSet set = ctx.gpu_scene().descriptor_set();
+  vkCmdBindDescriptorSets(ctx.cmd(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 1, 1, &set,
+                          0, nullptr);
+}
+
+VolumeSampler::VolumeSampler(gpu::Context& context) : context_(context) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = VK_FILTER_LINEAR;
+  info.minFilter = VK_FILTER_LINEAR;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  info.maxLod = VK_LOD_CLAMP_NONE;
+  gpu::check(vkCreateSampler(context_.device(), &info, nullptr, &sampler_),
+             "vkCreateSampler (vct volumes)");
+}
+
+VolumeSampler::~VolumeSampler() {
+  vkDestroySampler(context_.device(), sampler_, nullptr);
+}
+
+graph::SlotSpec clipmap_info_input() {
+  return {"clipmap_info",
+          graph::kinds(graph::ResourceKind::Buffer),
+          graph::Access::StorageRead,
+          graph::kStageCompute,
+          {},
+          false,
+          "VoxelClipmapInfo (lib/voxel_clipmap.glsl) written by the voxelization pass"};
+}
+
+graph::SlotSpec sampled_2d(const char* name, const char* doc, bool optional,
+                           std::vector<VkFormat> formats) {
+  return {name,
+          graph::kinds(graph::ResourceKind::Image2D),
+          graph::Access::Sampled,
+          graph::kStageCompute,
+          std::move(formats),
+          optional,
+          doc};
+}
+
+graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional,
+                                std::vector<VkFormat> formats) {
+  return {name,
+          graph::kinds(graph::ResourceKind::Clipmap),
+          graph::Access::Sampled,
+          graph::kStageCompute,
+          std::move(formats),
+          optional,
+          doc};
+}
+
+FilteredVolumes bound_filtered_volumes(const graph::PassContext& ctx) {
+  bool all_directional = true;
+  std::string missing;
+  for (const char* slot : kDirectionalSlots) {
+    if (!ctx.has(slot)) {
+      all_directional = false;
+      missing += std::string(missing.empty() ? "" : ", ") + slot;
+    }
+  }
+  if (all_directional) return FilteredVolumes::Anisotropic;
+  if (ctx.has(kFilteredSlot)) return FilteredVolumes::Isotropic;
+  throw std::invalid_argument("pass '" + ctx.pass_name() +
+                              "': bind either slot 'filtered' (isotropic) or all six directional "
+                              "slots pos_x..neg_z (anisotropic); unbound: filtered, " +
+                              missing);
+}
+
+FilteredVolumes require_filtered_volumes(const graph::PassContext& ctx, bool want_anisotropic) {
+  if (!want_anisotropic) {
+    if (!ctx.has(kFilteredSlot)) {
+      throw std::invalid_argument("pass '" + ctx.pass_name() +
+                                  "' field 'mode': mode 'isotropic' needs the output slot "
+                                  "'filtered' bound");
+    }
+    return FilteredVolumes::Isotropic;
+  }
+  std::string missing;
+  for (const char* slot : kDirectionalSlots) {
+    if (!ctx.has(slot)) missing += std::string(missing.empty() ? "" : ", ") + slot;
+  }
+  if (!missing.empty()) {
+    throw std::invalid_argument("pass '" + ctx.pass_name() +
+                                "' field 'mode': mode 'anisotropic' needs the output slots "
+                                "pos_x, neg_x, pos_y, neg_y, pos_z, neg_z bound; unbound: " +
+                                missing);
+  }
+  return FilteredVolumes::Anisotropic;
+}
+
+// Unbound optional slots count as version 0 (resource_version() wants a bound slot).
+uint64_t InputVersions::version(const graph::PassContext& ctx, const std::string& slot) {
+  return ctx.has(slot) ? ctx.resource_version(slot) : 0;
+}
+
+std::string InputVersions::changed(const graph::PassContext& ctx) const {
+  if (!valid_) return "first run";
+  for (size_t i = 0; i < slots_.size(); ++i) {
+    if (version(ctx, slots_[i]) != seen_[i]) return "input '" + slots_[i] + "' changed";
+  }
+  return {};
+}
+
+void InputVersions::remember(const graph::PassContext& ctx) {
+  seen_.clear();
+  for (const std::string& slot : slots_) seen_.push_back(version(ctx, slot));
+  valid_ = true;
+}
+
+}  // namespace voxgi::passes::vct

@@ -1,0 +1,66 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Deferred voxel shading, one indirect bounce per voxel (Villegas, "Voxel Global
+// Illumination"): diffuse cones over the hemisphere of each voxel's averaged normal gather the
+// irradiance E from the filtered radiance volume (vct.filter's output, lib/cone_trace.glsl),
+// and the voxel's outgoing radiance becomes direct + albedo / pi * E. Repeated K times, each
+// time after filtering, this is the fixed-point iteration L = L_direct + albedo/pi * E[L], a
+// contraction with gain at most albedo < 1 (docs/dvs.md).
+#include "lib/voxel_clipmap.glsl"
+#define VCT_VOLUME_SET 0
+#define VCT_VOLUME_BINDING 1
+#include "lib/cone_trace.glsl"
+#include "lib/common.glsl"
+#include "dvs/voxel_volume.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+// binding 0: VoxelClipmapInfo; binding 1: vct_volumes (lib/cone_trace.glsl)
+layout(set = 0, binding = 2) uniform sampler3D voxel_albedo;
+layout(set = 0, binding = 3) uniform sampler3D voxel_normal;
+layout(set = 0, binding = 4) uniform sampler3D direct_radiance;
+layout(set = 0, binding = 5, rgba16f) writeonly uniform image3D out_radiance;
+
+layout(push_constant) uniform Push {
+  uvec3 size;  // the stacked image: (R, R, R * L)
+  int cones;
+  float step_factor;
+  float max_distance;   // metres
+  float normal_offset;  // voxels of the voxel's level
+  float start_offset;   // voxels of the voxel's level
+} pc;
+
+void main() {
+  ivec3 texel = ivec3(gl_GlobalInvocationID);
+  if (any(greaterThanEqual(uvec3(texel), pc.size))) return;
+  int level = dvs_texel_level(texel);
+  vec4 direct = texelFetch(direct_radiance, texel, 0);
+  vec3 radiance = sanitize_radiance(direct.rgb);
+  float opacity = isnan(direct.a) ? 0.0 : clamp(direct.a, 0.0, 1.0);
+  vec4 albedo = texelFetch(voxel_albedo, texel, 0);
+  vec3 n = texelFetch(voxel_normal, texel, 0).xyz;
+  float n_len2 = dot(n, n);
+  bool occupied = albedo.a > 0.0 && any(greaterThan(albedo.rgb, vec3(0.0)));
+  // Faces that cancelled (a thin wall) leave no facing to gather around; gathering both sides
+  // would carry light through the wall, so such voxels keep their direct light only.
+  bool has_normal = n_len2 >= 1e-6 && !isinf(n_len2);
+  if (occupied && has_normal && voxel_level_valid(level)) {
+    float size = voxel_size(level);
+    vec3 p = dvs_texel_center(texel, level);
+    // Where a finer level covers this voxel, vct.filter replaces it by the finer data: no
+    // need to gather here.
+    bool covered = level > 0 && voxel_inside_window(voxel_window_coord(p, level - 1));
+    if (!covered) {
+      VctTraceSettings s;
+      s.step_factor = pc.step_factor;
+      s.max_distance = pc.max_distance;
+      s.start_distance = pc.start_offset * size;
+      s.ao_falloff = 0.0;
+      float visibility;
+      vec3 irradiance = vct_diffuse_irradiance(p, n * inversesqrt(n_len2), pc.cones,
+                                               pc.normal_offset * size, s, visibility);
+      radiance += albedo.rgb * (1.0 / VCT_PI) * sanitize_radiance(irradiance);
+    }
+  }
+  imageStore(out_radiance, texel, vec4(sanitize_radiance(radiance), opacity));
+}

@@ -1,0 +1,174 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Deferred voxel shading, direct part (Villegas §2): the outgoing diffuse radiance of every
+// voxel of the clipmap under the scene's punctual lights, with the normal-weighted attenuation
+// of §2.1, occlusion from the shadow maps or from soft voxel ray casting (§2.2.1), plus the
+// voxel's emission (§2.3). One invocation per texel of the stacked clipmap image.
+#include "lib/voxel_clipmap.glsl"
+#include "lib/common.glsl"
+#include "lib/scene.glsl"
+#include "lib/shadow_data.glsl"
+#include "dvs/voxel_volume.glsl"
+
+#ifndef HAS_EMISSION
+#define HAS_EMISSION 0
+#endif
+#ifndef HAS_SHADOW_MAPS
+#define HAS_SHADOW_MAPS 0
+#endif
+#ifndef HAS_DIRECT_COPY
+#define HAS_DIRECT_COPY 0
+#endif
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+// binding 0: VoxelClipmapInfo (lib/voxel_clipmap.glsl)
+layout(set = 0, binding = 1) uniform sampler3D voxel_albedo;
+layout(set = 0, binding = 2) uniform sampler3D voxel_normal;
+#if HAS_EMISSION
+layout(set = 0, binding = 3) uniform sampler3D voxel_emission;
+#endif
+#if HAS_SHADOW_MAPS
+layout(set = 0, binding = 4) uniform sampler2DArrayShadow shadow_maps;
+layout(set = 0, binding = 5, std430) readonly buffer ShadowBlock { ShadowLight shadow_lights[]; };
+#endif
+layout(set = 0, binding = 6, rgba16f) writeonly uniform image3D out_radiance;
+#if HAS_DIRECT_COPY
+layout(set = 0, binding = 7, rgba16f) writeonly uniform image3D out_direct;
+#endif
+
+const uint OCCLUSION_NONE = 0u;
+const uint OCCLUSION_SHADOW_MAP = 1u;
+const uint OCCLUSION_VOXEL_RAYS = 2u;
+
+layout(push_constant) uniform Push {
+  uvec3 size;           // the stacked image: (R, R, R * L)
+  uint occlusion;       // OCCLUSION_*
+  float shadow_kappa;   // occlusion per fully opaque voxel crossed at one voxel of distance
+  float shadow_bias;    // start offset of shadow rays / lookups, in voxels of the receiver
+  uint shadow_slots;    // lights with shadow-map data
+  uint max_steps;       // cap on the samples of one shadow ray
+} pc;
+
+// §2.2.1 soft voxel shadows: march from the voxel towards the light through the opacity of
+// the finest level that holds each sample, accumulating nu += (1 - nu) * kappa * alpha / t
+// per voxel crossed (t in voxels of the receiver, so near occluders give hard, far ones soft
+// shadows). Returns 1 - nu, the fraction of light that arrives.
+float voxel_ray_visibility(vec3 origin, vec3 dir, float max_t, float receiver_size) {
+  float nu = 0.0;
+  float t = pc.shadow_bias * receiver_size;
+  for (uint s = 0u; s < pc.max_steps && t < max_t; ++s) {
+    vec3 p = origin + dir * t;
+    int level = voxel_finest_level(p, 1.0);
+    if (level < 0) break;  // the ray left the volume
+    float size = voxel_size(level);
+    float alpha = dvs_opacity(voxel_albedo, p, level);
+    const float step_voxels = 0.5;
+    float gain = pc.shadow_kappa * alpha * step_voxels * (size / receiver_size) /
+                 max(t / receiver_size, 1.0);
+    nu += (1.0 - nu) * clamp(gain, 0.0, 1.0);
+    if (nu >= 0.999) return 0.0;
+    t += step_voxels * size;
+  }
+  return 1.0 - nu;
+}
+
+#if HAS_SHADOW_MAPS
+// Shadow-map occlusion of a voxel centre, 3x3 percentage-closer filtered. The lookup is moved
+// off the voxel centre along its normal: the centre may lie up to half a voxel inside the
+// surface the shadow map saw.
+float shadow_map_visibility(uint light_index, vec3 relative_position, vec3 offset_dir,
+                            float receiver_size) {
+  if (light_index >= pc.shadow_slots) return 1.0;
+  ShadowLight s = shadow_lights[light_index];
+  uint faces = uint(s.info.x + 0.5);
+  if (faces == 0u) return 1.0;
+  vec3 from_origin = (voxel_clipmap.anchor.xyz - s.origin.xyz) + relative_position +
+                     offset_dir * (pc.shadow_bias * receiver_size);
+  uint face = faces == 6u ? shadow_cube_face(from_origin) : 0u;
+  vec4 clip = s.view_proj[face] * vec4(from_origin, 1.0);
+  if (clip.w <= 0.0) return 1.0;
+  vec3 ndc = clip.xyz / clip.w;
+  if (any(greaterThan(abs(ndc.xy), vec2(1.0))) || ndc.z > 1.0) return 1.0;
+  vec2 uv = ndc.xy * 0.5 + 0.5;
+  float layer = float(light_index * 6u + face);
+  vec2 texel = 1.0 / vec2(textureSize(shadow_maps, 0).xy);
+  float sum = 0.0;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      sum += texture(shadow_maps, vec4(uv + vec2(dx, dy) * texel, layer, ndc.z));
+    }
+  }
+  return sum / 9.0;
+}
+#endif
+
+void main() {
+  ivec3 texel = ivec3(gl_GlobalInvocationID);
+  if (any(greaterThanEqual(uvec3(texel), pc.size))) return;
+  int level = dvs_texel_level(texel);
+  vec4 albedo = texelFetch(voxel_albedo, texel, 0);
+  vec4 normal = texelFetch(voxel_normal, texel, 0);
+  vec3 radiance = vec3(0.0);
+#if HAS_EMISSION
+  radiance += sanitize_radiance(texelFetch(voxel_emission, texel, 0).rgb);
+#endif
+  bool occupied = albedo.a > 0.0 || normal.w > 0.0;
+  if (occupied && voxel_level_valid(level)) {
+    float size = voxel_size(level);
+    vec3 p = dvs_texel_center(texel, level);
+    vec3 n = safe_normalize(normal.xyz, vec3(0.0));
+    vec3 irradiance = vec3(0.0);
+    uint light_count = scene_light_count();
+    for (uint i = 0u; i < light_count; ++i) {
+      SceneLight light = scene_lights[i];
+      vec3 l;
+      float attenuation = 1.0;
+      float max_t = 3.4e38;
+      if (light.type == SCENE_LIGHT_DIRECTIONAL) {
+        l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
+      } else {
+        vec3 to_light = voxel_relative(light.position) - p;
+        // A light inside the voxel (on a surface, inside geometry) lights it as if it were
+        // half a voxel away: the voxel's surfaces are at least that far on average, and 1/d^2
+        // stays finite.
+        float d2 = max(dot(to_light, to_light), 0.25 * size * size);
+        float d = sqrt(d2);
+        l = safe_normalize(to_light, vec3(0.0, 1.0, 0.0));
+        attenuation = 1.0 / d2;
+        if (light.range > 0.0) {
+          float r = d / light.range;
+          attenuation *= clamp(1.0 - r * r * r * r, 0.0, 1.0);
+        }
+        if (light.type == SCENE_LIGHT_SPOT) {
+          float cd = dot(safe_normalize(light.direction, vec3(0.0, -1.0, 0.0)), -l);
+          float s = clamp(cd * light.spot_scale + light.spot_offset, 0.0, 1.0);
+          attenuation *= s * s;
+        }
+        max_t = d - 0.5 * size;
+      }
+      float cosine = dvs_normal_weighted_cosine(normal.xyz, l);
+      if (attenuation <= 0.0 || cosine <= 0.0) continue;
+      float visibility = 1.0;
+      // Rays and lookups start off the surface: along the normal, or towards the light where
+      // the faces cancelled.
+      vec3 offset_dir = dot(n, n) > 0.0 ? n : l;
+      if (pc.occlusion == OCCLUSION_VOXEL_RAYS) {
+        vec3 origin = p + offset_dir * (pc.shadow_bias * size);
+        visibility = voxel_ray_visibility(origin, l, max_t, size);
+      }
+#if HAS_SHADOW_MAPS
+      if (pc.occlusion == OCCLUSION_SHADOW_MAP) {
+        visibility = shadow_map_visibility(i, p, offset_dir, size);
+      }
+#endif
+      irradiance += light.radiance * (attenuation * cosine * visibility);
+    }
+    radiance += albedo.rgb * (1.0 / 3.14159265358979) * irradiance;
+  }
+  vec4 result = vec4(sanitize_radiance(radiance), clamp(albedo.a, 0.0, 1.0));
+  imageStore(out_radiance, texel, result);
+#if HAS_DIRECT_COPY
+  imageStore(out_direct, texel, result);
+#endif
+}

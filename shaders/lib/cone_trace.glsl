@@ -1,0 +1,280 @@
+#ifndef VOXGI_CONE_TRACE_GLSL
+#define VOXGI_CONE_TRACE_GLSL
+// Voxel cone tracing through the filtered radiance clipmap (vct.filter's outputs). Used by
+// vct.cone_trace, vct.cone_trace_specular and any pass that gathers from the volume (dvs's
+// per-voxel bounce). docs/vct.md derives the weights and corrections used here.
+//
+// STORAGE (written by vct.filter, read here)
+//   Every filtered volume is a clipmap with the addressing of lib/voxel_clipmap.glsl (same R,
+//   L, toroidal origin) and a full mip chain: mip m holds, per level l, R>>m voxels per edge at
+//   z in [l*(R>>m), (l+1)*(R>>m)). Texel m of world voxel w is (w >> m) mod (R >> m).
+//   rgb = PREMULTIPLIED outgoing radiance (radiance x opacity), a = opacity of one voxel length
+//   at that level and mip. Mip m of level l is the filter of mip m-1; mip 0 of level l > 0 is,
+//   where level l-1 covers it, the filter of level l-1's mip 0 (so the levels agree), and
+//   elsewhere the injected radiance of level l.
+//   Isotropic mode (VCT_ANISOTROPIC 0): one volume, the box filter of the 8 children.
+//   Anisotropic mode (VCT_ANISOTROPIC 1): six volumes, index 0..5 = +X, -X, +Y, -Y, +Z, -Z.
+//   Volume +X is what a cone travelling in +X sees: each voxel is the average over the four
+//   child columns of the front-to-back composite along +X (children at lower x in front).
+//   Voxels with no finer data (level 0 mip 0, the part of a level no finer level covers) hold
+//   the isotropic value in all six.
+//
+// BINDINGS (the includer provides them)
+//   Include lib/voxel_clipmap.glsl first (the clipmap info buffer). Define VCT_VOLUME_SET and
+//   VCT_VOLUME_BINDING (defaults 0 and 1) and VCT_ANISOTROPIC (default 0); the volumes are
+//   one array binding `sampler3D vct_volumes[1 or 6]`, each combined with a sampler that is
+//   LINEAR, address mode REPEAT (the toroidal wrap in x and y; z is interpolated here by hand
+//   because levels are stacked in z), whole-mip lods (mipmap mode NEAREST suffices) and no
+//   anisotropic filtering, which has no meaning for explicit lods. passes/vct's VolumeSampler
+//   is exactly that; gpu::SamplerKind::LinearRepeatMipmapped also works but adds anisotropy
+//   where the device has it.
+//
+// API
+//   vct_sample(p, dir, lod)            filtered premultiplied radiance + opacity at a point
+//   vct_trace_cone(cone, settings)     front-to-back accumulation along one cone
+//   vct_diffuse_cone(i, n, ...)        the i-th of n diffuse cones (tangent space) + weight
+//   vct_diffuse_irradiance(...)        irradiance E over the hemisphere of a normal, and AO
+//   vct_specular_tan_half_angle(r)     cone aperture for a GGX perceptual roughness
+// Positions are anchor-relative (voxel_relative(world)); distances in metres.
+
+#ifndef VCT_VOLUME_SET
+#define VCT_VOLUME_SET 0
+#endif
+#ifndef VCT_VOLUME_BINDING
+#define VCT_VOLUME_BINDING 1
+#endif
+#ifndef VCT_ANISOTROPIC
+#define VCT_ANISOTROPIC 0
+#endif
+#if VCT_ANISOTROPIC
+#define VCT_VOLUME_COUNT 6
+#else
+#define VCT_VOLUME_COUNT 1
+#endif
+// Hard cap on the steps of one cone, so that no parameter combination can hang the GPU.
+#define VCT_MAX_STEPS 512
+// A cone stops once it is this opaque: the rest would add less than 1% of its radiance.
+#define VCT_OPACITY_THRESHOLD 0.99
+// Widest cone aperture (half angle 60 degrees): wider cones jump to the coarsest mips at once.
+#define VCT_MAX_TAN_HALF_ANGLE 1.7320508
+
+layout(set = VCT_VOLUME_SET, binding = VCT_VOLUME_BINDING) uniform sampler3D
+    vct_volumes[VCT_VOLUME_COUNT];
+
+const float VCT_PI = 3.14159265358979323846;
+
+// One level and mip of a filtered volume at anchor-relative position p, trilinear: x and y by
+// the sampler (REPEAT = toroidal wrap), z between two slices of this level by hand.
+vec4 vct_fetch(sampler3D volume, vec3 p, int level, int mip) {
+  int r = voxel_resolution() >> mip;
+  int levels = voxel_level_count();
+  ivec3 origin = voxel_clipmap.levels[level].origin_voxel.xyz;
+  // Continuous world-voxel coordinate at this mip, split into an integer part kept exact and
+  // a small fraction, so that scenes far from the origin keep precision.
+  ivec3 origin_mip = origin >> mip;  // arithmetic shift: floor division for negatives too
+  vec3 remainder = vec3(origin - (origin_mip << mip));
+  vec3 fraction = (voxel_window_coord(p, level) + remainder) / float(1 << mip);
+  ivec3 base = origin_mip & (r - 1);  // floor modulo: r is a power of two
+  vec3 texel = vec3(base) + fraction;
+  float z = texel.z - 0.5;
+  float z0 = floor(z);
+  float wz = z - z0;
+  int s0 = int(z0) & (r - 1);
+  int s1 = (s0 + 1) & (r - 1);
+  float depth = float(r * levels);
+  vec2 xy = texel.xy / float(r);  // REPEAT wraps
+  float lod = float(mip);
+  vec3 c0 = vec3(xy, (float(level * r + s0) + 0.5) / depth);
+  vec3 c1 = vec3(xy, (float(level * r + s1) + 0.5) / depth);
+  vec4 a = textureLod(volume, c0, lod);
+  vec4 b = textureLod(volume, c1, lod);
+  return mix(a, b, wz);
+}
+
+#if VCT_ANISOTROPIC
+vec4 vct_fetch_directional(vec3 p, vec3 dir, int level, int mip) {
+  // Face weights dir^2 sum to 1, so a uniform medium is returned unchanged (docs/vct.md).
+  vec3 w = dir * dir;
+  vec4 x = dir.x >= 0.0 ? vct_fetch(vct_volumes[0], p, level, mip)
+                        : vct_fetch(vct_volumes[1], p, level, mip);
+  vec4 y = dir.y >= 0.0 ? vct_fetch(vct_volumes[2], p, level, mip)
+                        : vct_fetch(vct_volumes[3], p, level, mip);
+  vec4 z = dir.z >= 0.0 ? vct_fetch(vct_volumes[4], p, level, mip)
+                        : vct_fetch(vct_volumes[5], p, level, mip);
+  return w.x * x + w.y * y + w.z * z;
+}
+#endif
+
+// Integer level of detail k (voxel edge = level-0 edge * 2^k): clipmap level k while there is
+// one, then the mips of the coarsest level.
+vec4 vct_fetch_lod(vec3 p, vec3 dir, int k) {
+  int level = min(k, voxel_level_count() - 1);
+  int mip = k - level;
+  if (!voxel_level_valid(level)) return vec4(0.0);
+#if VCT_ANISOTROPIC
+  return vct_fetch_directional(p, dir, level, mip);
+#else
+  return vct_fetch(vct_volumes[0], p, level, mip);
+#endif
+}
+
+// The coarsest level of detail a point can use.
+float vct_max_lod() {
+  return float(voxel_level_count() - 1) + log2(float(voxel_resolution()));
+}
+
+// Filtered premultiplied radiance and opacity at p for a cone travelling along dir, at a
+// fractional level of detail (quadrilinear: trilinear in space, linear between lods). Levels
+// finer than the finest one containing p are replaced by it. vec4(0) outside the volume.
+vec4 vct_sample(vec3 p, vec3 dir, float lod) {
+  int finest = voxel_finest_level(p, 1.0);
+  if (finest < 0) return vec4(0.0);
+  lod = clamp(lod, float(finest), vct_max_lod());
+  int k = int(floor(lod));
+  float f = lod - float(k);
+  vec4 a = vct_fetch_lod(p, dir, k);
+  if (f <= 0.0) return a;
+  return mix(a, vct_fetch_lod(p, dir, k + 1), f);
+}
+
+struct VctCone {
+  vec3 origin;     // anchor-relative
+  vec3 direction;  // unit
+  float tan_half_angle;
+};
+
+struct VctTraceSettings {
+  float step_factor;     // beta: step length / cone diameter (0 < beta)
+  float max_distance;    // metres along the cone
+  float start_distance;  // metres skipped at the start (self-occlusion)
+  float ao_falloff;      // lambda of f(r) = 1 / (1 + lambda r), r in level-0 voxel edges
+};
+
+struct VctConeResult {
+  vec3 radiance;    // radiance arriving along the cone (W/sr/m^2)
+  float opacity;    // accumulated opacity alpha (1 = fully blocked)
+  float occlusion;  // ambient-occlusion term delta with the 1/(1+lambda r) falloff
+};
+
+// Front-to-back accumulation along one cone (seed 001 section 4, Crassin): at each step the
+// sample's opacity is corrected for the step length, 1 - (1 - a)^(step / voxel edge), and its
+// premultiplied colour scaled alike, so that the result does not depend on beta. Stops when
+// opaque, past max_distance or when the cone leaves the coarsest level.
+VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
+  VctConeResult result;
+  result.radiance = vec3(0.0);
+  result.opacity = 0.0;
+  result.occlusion = 0.0;
+  float tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
+  float base_size = voxel_size(0);
+  float t = max(s.start_distance, 0.0);
+  for (int i = 0; i < VCT_MAX_STEPS; ++i) {
+    if (result.opacity >= VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
+    vec3 p = cone.origin + t * cone.direction;
+    int finest = voxel_finest_level(p, 1.0);
+    if (finest < 0) break;  // left the volume
+    float diameter = max(2.0 * t * tan_half, base_size);
+    float lod = clamp(log2(diameter / base_size), float(finest), vct_max_lod());
+    float voxel = base_size * exp2(lod);  // edge of the voxels actually sampled
+    // Each sample stands for the segment [t, t + step]; the last one ends at max_distance.
+    float step_length = max(s.step_factor * max(diameter, voxel), 1e-2 * base_size);
+    step_length = min(step_length, s.max_distance - t);
+    vec4 v = vct_sample(p, cone.direction, lod);
+    float a = clamp(v.a, 0.0, 1.0);
+    float ratio = step_length / voxel;
+    float corrected = 1.0 - pow(1.0 - min(a, 0.999999), ratio);
+    if (a >= 0.999999) corrected = 1.0;
+    vec3 colour = a > 1e-6 ? v.rgb * (corrected / a) : v.rgb * ratio;
+    colour = max(colour, vec3(0.0));
+    result.radiance += (1.0 - result.opacity) * colour;
+    float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * diameter / base_size);
+    result.occlusion += (1.0 - result.occlusion) * corrected * falloff;
+    result.opacity += (1.0 - result.opacity) * corrected;
+    t += step_length;
+  }
+  return result;
+}
+
+// An orthonormal tangent frame around a unit normal (no singularity at any normal).
+void vct_tangent_frame(vec3 n, out vec3 t, out vec3 b) {
+  float sign_z = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (sign_z + n.z);
+  float c = n.x * n.y * a;
+  t = vec3(1.0 + sign_z * n.x * n.x * a, sign_z * c, -sign_z * n.x);
+  b = vec3(c, sign_z + n.y * n.y * a, -n.y);
+}
+
+// The i-th of `count` diffuse cones (1..16) in tangent space (z = normal). The hemisphere is
+// cut into `count` cells of equal cosine-weighted solid angle: for count <= 3, `count` azimuthal
+// sectors; otherwise a polar cap with sin^2(theta_c) = 1/count plus count-1 sectors of the ring
+// theta_c..90 degrees. Each cone points at its cell's cosine-weighted centroid, has the cell's
+// solid angle and weight pi/count (the cell's integral of cos theta), so the weights sum to
+// exactly pi: a uniform environment of radiance L gives irradiance pi*L for every count.
+void vct_diffuse_cone(int index, int count, out vec3 direction, out float weight,
+                      out float tan_half_angle) {
+  count = clamp(count, 1, 16);
+  weight = VCT_PI / float(count);
+  bool has_cap = count >= 4;
+  float sin2_cap = has_cap ? 1.0 / float(count) : 0.0;
+  float cos_cap = sqrt(1.0 - sin2_cap);
+  float solid_angle;
+  if (has_cap && index == 0) {
+    direction = vec3(0.0, 0.0, 1.0);
+    solid_angle = 2.0 * VCT_PI * (1.0 - cos_cap);
+  } else {
+    int sectors = has_cap ? count - 1 : count;
+    int sector = has_cap ? index - 1 : index;
+    float width = 2.0 * VCT_PI / float(sectors);
+    float phi = (float(sector) + 0.5) * width;
+    float sin_cap = sqrt(sin2_cap);
+    // Integrals over the sector of cos(theta) * omega: radial part and normal part.
+    float radial = (1.0 - sin_cap * sin_cap * sin_cap) / 3.0 * 2.0 * sin(0.5 * width);
+    float normal = cos_cap * cos_cap * cos_cap / 3.0 * width;
+    direction = normalize(vec3(radial * cos(phi), radial * sin(phi), normal));
+    solid_angle = width * cos_cap;
+  }
+  // A cone of half angle h has solid angle 2 pi (1 - cos h).
+  float cos_half = clamp(1.0 - solid_angle / (2.0 * VCT_PI), 0.0, 1.0);
+  float sin_half = sqrt(max(1.0 - cos_half * cos_half, 0.0));
+  tan_half_angle = min(sin_half / max(cos_half, 1e-4), VCT_MAX_TAN_HALF_ANGLE);
+}
+
+// Irradiance E (W/m^2) at anchor-relative p with unit normal n from `count` diffuse cones, and
+// the ambient-occlusion visibility (1 = open) in `visibility`. The cones start `normal_offset`
+// (metres) off the surface. Outgoing diffuse radiance is c_diff / pi * E.
+vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float normal_offset, VctTraceSettings s,
+                            out float visibility) {
+  vec3 t, b;
+  vct_tangent_frame(n, t, b);
+  vec3 origin = p + n * normal_offset;
+  vec3 irradiance = vec3(0.0);
+  float occlusion = 0.0;
+  count = clamp(count, 1, 16);
+  for (int i = 0; i < count; ++i) {
+    vec3 d;
+    float weight, tan_half;
+    vct_diffuse_cone(i, count, d, weight, tan_half);
+    VctCone cone;
+    cone.origin = origin;
+    cone.direction = normalize(t * d.x + b * d.y + n * d.z);
+    cone.tan_half_angle = tan_half;
+    VctConeResult r = vct_trace_cone(cone, s);
+    irradiance += weight * r.radiance;
+    occlusion += weight * r.occlusion;
+  }
+  visibility = clamp(1.0 - occlusion / VCT_PI, 0.0, 1.0);
+  return irradiance;
+}
+
+// Specular cone aperture for a GGX perceptual roughness (alpha = roughness^2). The GGX
+// distribution falls to half its peak at tan(theta_h) = alpha * sqrt(sqrt(2) - 1); reflection
+// doubles angles, so the reflected lobe's half-maximum half angle is 2 * atan(0.6436 alpha).
+// Clamped to [0.5 degrees, 60 degrees].
+float vct_specular_tan_half_angle(float roughness) {
+  float alpha = clamp(roughness, 0.0, 1.0);
+  alpha *= alpha;
+  float half_angle = clamp(2.0 * atan(0.6435943 * alpha), 0.0087266, 1.0471976);
+  return tan(half_angle);
+}
+
+#endif

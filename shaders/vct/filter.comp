@@ -1,0 +1,161 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// vct.filter: builds the filtered volumes the cone tracer reads (layout: lib/cone_trace.glsl)
+// from the radiance clipmap (rgb = outgoing radiance, a = opacity, not premultiplied).
+//   STAGE_LEVEL: mip 0 of one clipmap level. Where the next finer level covers a voxel's eight
+//     children, the voxel is their filter (levels agree); elsewhere the injected radiance,
+//     premultiplied. Levels run finest first, so level l-1 is final when level l reads it.
+//   STAGE_MIP: mip m of every level from mip m-1 of the same level (texel t <- 2t + {0,1}^3).
+// Isotropic: box filter of the 8 children. Anisotropic (ANISOTROPIC=1): per direction, the
+// front-to-back composite of each child pair along the axis, averaged over the 4 columns.
+// NaN/Inf and out-of-range values are scrubbed when read.
+#include "lib/common.glsl"
+#define VOXEL_CLIPMAP_SET 0
+#define VOXEL_CLIPMAP_BINDING 0
+#include "lib/voxel_clipmap.glsl"
+
+#ifndef ANISOTROPIC
+#define ANISOTROPIC 0
+#endif
+#if ANISOTROPIC
+#define VOLUMES 6
+#else
+#define VOLUMES 1
+#endif
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+layout(set = 0, binding = 1) uniform sampler3D radiance;  // mip 0 read with texelFetch
+// Source (mip m-1, or mip 0 of the finer level) and destination views of each volume.
+layout(set = 0, binding = 2, rgba16f) uniform image3D src0;
+layout(set = 0, binding = 3, rgba16f) uniform image3D dst0;
+#if ANISOTROPIC
+layout(set = 0, binding = 4, rgba16f) uniform image3D src1;
+layout(set = 0, binding = 5, rgba16f) uniform image3D dst1;
+layout(set = 0, binding = 6, rgba16f) uniform image3D src2;
+layout(set = 0, binding = 7, rgba16f) uniform image3D dst2;
+layout(set = 0, binding = 8, rgba16f) uniform image3D src3;
+layout(set = 0, binding = 9, rgba16f) uniform image3D dst3;
+layout(set = 0, binding = 10, rgba16f) uniform image3D src4;
+layout(set = 0, binding = 11, rgba16f) uniform image3D dst4;
+layout(set = 0, binding = 12, rgba16f) uniform image3D src5;
+layout(set = 0, binding = 13, rgba16f) uniform image3D dst5;
+#endif
+
+layout(push_constant) uniform Push {
+  int stage;  // 0: level mip 0, 1: mip of all levels
+  int level;  // STAGE_LEVEL: the level written
+  int mip;    // STAGE_MIP: the mip written
+  int pad;
+} pc;
+
+vec4 scrub(vec4 v) {
+  float a = isnan(v.a) || isinf(v.a) ? 0.0 : clamp(v.a, 0.0, 1.0);
+  return vec4(sanitize_radiance(v.rgb), a);
+}
+
+vec4 load_src(int volume, ivec3 texel) {
+  vec4 v;
+#if ANISOTROPIC
+  switch (volume) {
+    case 0: v = imageLoad(src0, texel); break;
+    case 1: v = imageLoad(src1, texel); break;
+    case 2: v = imageLoad(src2, texel); break;
+    case 3: v = imageLoad(src3, texel); break;
+    case 4: v = imageLoad(src4, texel); break;
+    default: v = imageLoad(src5, texel); break;
+  }
+#else
+  v = imageLoad(src0, texel);
+#endif
+  return scrub(v);
+}
+
+void store_dst(int volume, ivec3 texel, vec4 v) {
+  v = scrub(v);
+#if ANISOTROPIC
+  switch (volume) {
+    case 0: imageStore(dst0, texel, v); break;
+    case 1: imageStore(dst1, texel, v); break;
+    case 2: imageStore(dst2, texel, v); break;
+    case 3: imageStore(dst3, texel, v); break;
+    case 4: imageStore(dst4, texel, v); break;
+    default: imageStore(dst5, texel, v); break;
+  }
+#else
+  imageStore(dst0, texel, v);
+#endif
+}
+
+// Front-to-back composite of premultiplied samples, `front` nearer to the viewer.
+vec4 over(vec4 front, vec4 back) {
+  return vec4(front.rgb + (1.0 - front.a) * back.rgb, front.a + (1.0 - front.a) * back.a);
+}
+
+// The filtered value for `volume` from its 8 children's texels, ordered x fastest (child i
+// has offset (i & 1, (i >> 1) & 1, (i >> 2) & 1)).
+vec4 filter_children(int volume, ivec3 child[8]) {
+  vec4 c[8];
+  for (int i = 0; i < 8; ++i) c[i] = load_src(volume, child[i]);
+#if ANISOTROPIC
+  // Volume 2k+s looks along axis k, s = 0 positive (lower coordinate in front), 1 negative.
+  int axis = volume / 2;
+  bool positive = (volume & 1) == 0;
+  int stride = axis == 0 ? 1 : (axis == 1 ? 2 : 4);
+  vec4 sum = vec4(0.0);
+  for (int i = 0; i < 8; ++i) {
+    if ((i & stride) != 0) continue;  // i is the lower child of its pair along the axis
+    vec4 lower = c[i];
+    vec4 upper = c[i + stride];
+    sum += positive ? over(lower, upper) : over(upper, lower);
+  }
+  return sum * 0.25;
+#else
+  vec4 sum = vec4(0.0);
+  for (int i = 0; i < 8; ++i) sum += c[i];
+  return sum * 0.125;
+#endif
+}
+
+void main() {
+  int r = voxel_resolution();
+  int levels = voxel_level_count();
+  ivec3 id = ivec3(gl_GlobalInvocationID);
+  if (pc.stage == 0) {
+    if (any(greaterThanEqual(id, ivec3(r)))) return;
+    int level = pc.level;
+    ivec3 texel = voxel_texel(id, level);
+    bool from_finer = false;
+    ivec3 child[8];
+    if (level > 0 && voxel_level_valid(level - 1) && voxel_level_valid(level)) {
+      // World voxel index of this voxel, its first child in the finer level, and that child's
+      // window coordinate there.
+      ivec3 world = id + voxel_clipmap.levels[level].origin_voxel.xyz;
+      ivec3 first = world * 2 - voxel_clipmap.levels[level - 1].origin_voxel.xyz;
+      from_finer = all(greaterThanEqual(first, ivec3(0))) && all(lessThan(first + 1, ivec3(r)));
+      for (int i = 0; i < 8; ++i) {
+        ivec3 offset = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+        child[i] = voxel_texel(first + offset, level - 1);
+      }
+    }
+    if (from_finer) {
+      for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, filter_children(v, child));
+    } else {
+      vec4 injected = scrub(texelFetch(radiance, texel, 0));
+      vec4 premultiplied = vec4(injected.rgb * injected.a, injected.a);
+      for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, premultiplied);
+    }
+    return;
+  }
+  int rm = r >> pc.mip;
+  int rs = rm * 2;  // source mip edge
+  if (any(greaterThanEqual(id, ivec3(rm, rm, rm * levels)))) return;
+  int level = id.z / rm;
+  ivec3 local = ivec3(id.xy, id.z - level * rm);
+  ivec3 child[8];
+  for (int i = 0; i < 8; ++i) {
+    ivec3 c = local * 2 + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    child[i] = ivec3(c.xy, c.z + level * rs);
+  }
+  for (int v = 0; v < VOLUMES; ++v) store_dst(v, id, filter_children(v, child));
+}

@@ -1,0 +1,64 @@
+#ifndef VOXGI_VCT_GBUFFER_SAMPLE_GLSL
+#define VOXGI_VCT_GBUFFER_SAMPLE_GLSL
+// G-buffer access shared by the vct trace and upsample shaders (bindings 2..6 of set 0).
+
+layout(set = 0, binding = 2) uniform FrameBlock { FrameUniforms frame; };
+layout(set = 0, binding = 3) uniform sampler2D g_base_color;
+layout(set = 0, binding = 4) uniform sampler2D g_normal;
+layout(set = 0, binding = 5) uniform sampler2D g_material;
+layout(set = 0, binding = 6) uniform sampler2D g_depth;
+
+struct GbufferSample {
+  bool valid;  // false where no geometry was drawn
+  vec3 position;
+  vec3 normal;
+  vec3 base_color;
+  float metallic;
+  float roughness;
+  float view_depth;  // distance along the view axis (m)
+};
+
+ivec2 gbuffer_size() { return textureSize(g_depth, 0); }
+
+float gbuffer_view_depth(ivec2 pixel, float depth) {
+  vec2 uv = (vec2(pixel) + 0.5) / vec2(gbuffer_size());
+  vec4 view = frame.inv_proj * vec4(uv * 2.0 - 1.0, depth, 1.0);
+  return abs(view.z / view.w);
+}
+
+GbufferSample gbuffer_sample(ivec2 pixel) {
+  GbufferSample g;
+  pixel = clamp(pixel, ivec2(0), gbuffer_size() - 1);
+  float depth = texelFetch(g_depth, pixel, 0).r;
+  g.valid = depth < 1.0 && !isnan(depth);
+  vec2 uv = (vec2(pixel) + 0.5) / vec2(gbuffer_size());
+  g.position = reconstruct_world_position(frame.inv_proj, frame.inv_view, uv, depth);
+  vec4 normal_roughness = texelFetch(g_normal, pixel, 0);
+  g.normal = safe_normalize(normal_roughness.xyz, vec3(0.0, 1.0, 0.0));
+  vec4 material = texelFetch(g_material, pixel, 0);
+  g.base_color = clamp(texelFetch(g_base_color, pixel, 0).rgb, vec3(0.0), vec3(1.0));
+  g.metallic = clamp(material.r, 0.0, 1.0);
+  g.roughness = clamp(normal_roughness.w, 0.0, 1.0);
+  g.view_depth = g.valid ? gbuffer_view_depth(pixel, depth) : 0.0;
+  return g;
+}
+
+// The full-resolution pixel a half-resolution pixel is traced from: the nearest (smallest
+// depth) of its 2x2 block, so silhouettes keep the foreground surface. Deterministic, so the
+// upsampler can find it again.
+ivec2 gbuffer_block_representative(ivec2 half_pixel) {
+  ivec2 size = gbuffer_size();
+  ivec2 best = min(half_pixel * 2, size - 1);
+  float best_depth = 2.0;
+  for (int i = 0; i < 4; ++i) {
+    ivec2 q = min(half_pixel * 2 + ivec2(i & 1, i >> 1), size - 1);
+    float d = texelFetch(g_depth, q, 0).r;
+    if (!isnan(d) && d < best_depth) {
+      best_depth = d;
+      best = q;
+    }
+  }
+  return best;
+}
+
+#endif

@@ -1,0 +1,137 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// vct.inject: direct light into the radiance clipmap. For every occupied voxel of every level:
+//   L_out = albedo / pi * sum_lights(E_light * cos * visibility) + emission
+// the outgoing Lambert radiance of the voxel (isotropic), a = opacity (albedo alpha). The
+// shadow maps decide visibility; cos uses the voxel's averaged normal. A voxel whose normal
+// is missing or whose faces cancelled (|n| < NORMAL_MIN_LENGTH) is treated as facing each
+// light (cos = 1): a thin wall lit from one side glows rather than going black, and the
+// shadow map still decides whether light reaches it. Output is sanitized HDR.
+#include "lib/common.glsl"
+#include "lib/scene.glsl"
+#include "lib/shadow_data.glsl"
+#define VOXEL_CLIPMAP_SET 0
+#define VOXEL_CLIPMAP_BINDING 0
+#include "lib/voxel_clipmap.glsl"
+
+#ifndef HAS_SHADOWS
+#define HAS_SHADOWS 0
+#endif
+#ifndef HAS_EMISSION
+#define HAS_EMISSION 0
+#endif
+
+const float INJECT_PI = 3.14159265358979323846;
+const float NORMAL_MIN_LENGTH = 0.25;
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+layout(set = 0, binding = 1) uniform sampler3D voxel_albedo;
+layout(set = 0, binding = 2) uniform sampler3D voxel_normal;
+#if HAS_EMISSION
+layout(set = 0, binding = 3) uniform sampler3D voxel_emission;
+#endif
+#if HAS_SHADOWS
+layout(set = 0, binding = 4) uniform sampler2DArrayShadow shadow_maps;
+layout(set = 0, binding = 5, std430) readonly buffer ShadowBlock { ShadowLight shadow_lights[]; };
+#endif
+layout(set = 0, binding = 6, rgba16f) writeonly uniform image3D out_radiance;
+
+layout(push_constant) uniform Push {
+  uint shadow_slots;    // lights with shadow data
+  float normal_offset;  // shadow lookup offset, in voxels
+  uint shadows_enabled;
+  float pad;
+} pc;
+
+#if HAS_SHADOWS
+// 1 when the shadow map of light `index` sees p (2x2 hardware PCF of one compare lookup).
+float shadow_visibility(uint index, vec3 p) {
+  if (pc.shadows_enabled == 0u || index >= pc.shadow_slots) return 1.0;
+  ShadowLight s = shadow_lights[index];
+  uint faces = uint(s.info.x + 0.5);
+  if (faces == 0u) return 1.0;
+  vec3 relative = p - s.origin.xyz;
+  uint face = faces == 6u ? shadow_cube_face(relative) : 0u;
+  vec4 clip = s.view_proj[face] * vec4(relative, 1.0);
+  if (clip.w <= 0.0) return 1.0;
+  vec3 ndc = clip.xyz / clip.w;
+  if (any(greaterThan(abs(ndc.xy), vec2(1.0))) || ndc.z > 1.0) return 1.0;
+  vec2 uv = ndc.xy * 0.5 + 0.5;
+  return texture(shadow_maps, vec4(uv, float(index * 6u + face), ndc.z));
+}
+#endif
+
+void main() {
+  int r = voxel_resolution();
+  int levels = voxel_level_count();
+  ivec3 id = ivec3(gl_GlobalInvocationID);
+  if (any(greaterThanEqual(id, ivec3(r, r, r * levels)))) return;
+  int level = id.z / r;
+  ivec3 window = ivec3(id.xy, id.z - level * r);
+  ivec3 texel = voxel_texel(window, level);
+  if (!voxel_level_valid(level)) {
+    imageStore(out_radiance, texel, vec4(0.0));
+    return;
+  }
+  vec4 albedo = texelFetch(voxel_albedo, texel, 0);
+  float opacity = clamp(isnan(albedo.a) ? 0.0 : albedo.a, 0.0, 1.0);
+  vec3 emission = vec3(0.0);
+#if HAS_EMISSION
+  emission = sanitize_radiance(texelFetch(voxel_emission, texel, 0).rgb);
+#endif
+  if (opacity <= 0.0) {
+    imageStore(out_radiance, texel, vec4(0.0));
+    return;
+  }
+  vec3 reflectance = clamp(albedo.rgb, vec3(0.0), vec3(1.0)) / INJECT_PI;
+  vec4 normal_occupied = texelFetch(voxel_normal, texel, 0);
+  vec3 n_raw = normal_occupied.xyz;
+  if (any(isnan(n_raw)) || any(isinf(n_raw))) n_raw = vec3(0.0);
+  float n_len = length(n_raw);
+  bool has_normal = n_len >= NORMAL_MIN_LENGTH;
+  vec3 n = has_normal ? n_raw / n_len : vec3(0.0);
+
+  // Voxel centre, world space (anchor-relative arithmetic first for precision).
+  float size = voxel_size(level);
+  vec3 relative = voxel_level_min(level) + (vec3(window) + 0.5) * size;
+  vec3 p = relative + voxel_clipmap.anchor.xyz;
+
+  vec3 irradiance = vec3(0.0);
+  uint light_count = scene_light_count();
+  for (uint i = 0u; i < light_count; ++i) {
+    SceneLight light = scene_lights[i];
+    vec3 l;
+    float attenuation = 1.0;
+    if (light.type == SCENE_LIGHT_DIRECTIONAL) {
+      l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
+    } else {
+      vec3 to_light = light.position - p;
+      // A light inside or next to the voxel must not give 1/0: clamp at a quarter voxel.
+      float d2 = max(dot(to_light, to_light), max(0.0625 * size * size, 1e-8));
+      float d = sqrt(d2);
+      l = to_light / d;
+      attenuation = 1.0 / d2;
+      if (light.range > 0.0) {
+        float q = d / light.range;
+        attenuation *= clamp(1.0 - q * q * q * q, 0.0, 1.0);
+      }
+      if (light.type == SCENE_LIGHT_SPOT) {
+        float cd = dot(safe_normalize(light.direction, vec3(0.0, -1.0, 0.0)), -l);
+        float s = clamp(cd * light.spot_scale + light.spot_offset, 0.0, 1.0);
+        attenuation *= s * s;
+      }
+    }
+    float cos_theta = has_normal ? dot(n, l) : 1.0;
+    if (attenuation <= 0.0 || cos_theta <= 0.0) continue;
+    float visibility = 1.0;
+#if HAS_SHADOWS
+    // Look up from in front of the surface: the voxel centre may lie behind it.
+    vec3 facing = has_normal ? n : l;
+    visibility = shadow_visibility(i, p + facing * (pc.normal_offset * size));
+#endif
+    irradiance += light.radiance * (attenuation * cos_theta * visibility);
+  }
+  vec3 radiance = reflectance * irradiance + emission;
+  imageStore(out_radiance, texel, vec4(sanitize_radiance(radiance), opacity));
+}

@@ -1,0 +1,188 @@
+// Energy tests of lib/cone_trace.glsl through vct.filter on volumes the test writes:
+// a uniform emissive shell around a point gives irradiance pi*L for every cone count, an
+// opaque wall stops a cone, and the step-size opacity correction makes results independent
+// of the step factor.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "engine/scene/builtin_scenes.hpp"
+#include "tests/gpu/gpu_test_env.hpp"
+#include "tests/vct/filter_graphs.hpp"
+#include "tests/vct/volume_harness.hpp"
+
+namespace voxgi::test {
+namespace {
+
+constexpr int kR = 64;
+constexpr float kVoxel = 1.0f / 16.0f;  // a 4 m dense volume around the origin
+
+// Fills every level of `data` (centred near the origin) with radiance from `f` at the voxel
+// centres.
+template <typename F>
+void fill_radiance(VolumeData& data, F f, int levels = 1) {
+  data.info = make_clipmap_info(kR, levels, kVoxel, glm::vec3(0.3f, -0.2f, 0.1f));
+  CpuClipmap radiance(kR, levels);
+  for (int level = 0; level < levels; ++level) {
+    const float size = data.info.levels[level].min_corner_size.w;
+    for (int z = 0; z < kR; ++z) {
+      for (int y = 0; y < kR; ++y) {
+        for (int x = 0; x < kR; ++x) {
+          const glm::ivec3 window(x, y, z);
+          const glm::vec3 centre = glm::vec3(data.info.levels[level].min_corner_size) +
+                                   (glm::vec3(window) + 0.5f) * size;
+          radiance.at(clipmap_texel(data.info, window, level)) = f(centre);
+        }
+      }
+    }
+  }
+  data.volumes["radiance"] = std::move(radiance);
+  ++data.version;
+}
+
+class ConeTraceEnergyTest : public GpuTest, public ::testing::WithParamInterface<bool> {};
+class ConeTraceClipmapTest : public GpuTest {};
+
+// A point 1 m inside a uniform emitter: every voxel farther than 1 m is opaque and emits
+// L = 1, so every direction of the hemisphere sees L and E = pi * L whatever the cone layout
+// (the weights sum to pi). What is left is the transparency a cone keeps when it reaches the
+// edge of the volume (2 m) through coarse mips that mix the emitter with the empty ball
+// around the point. Tolerance, anisotropic: 5% for N >= 4 (the request of the issue), 10%
+// below, where 1-3 cones are wide (up to 60 degrees half angle); measured <= 0.6% for all N.
+// Isotropic: 12%, since box-filtered mips of the emitter's boundary are only partly opaque
+// and oblique cones leave the volume before saturating (measured up to 11%).
+TEST_P(ConeTraceEnergyTest, UniformEmissiveShellGivesPiL) {
+  const bool anisotropic = GetParam();
+  VolumeData data;
+  fill_radiance(data, [](glm::vec3 c) {
+    const float r = glm::length(c);
+    return r >= 1.0f ? glm::vec4(1.0f, 1.0f, 1.0f, 1.0f) : glm::vec4(0.0f);
+  });
+  VolumeGraph graph(filter_graph(kR, 1, anisotropic), &data, scene::make_builtin_scene("empty"));
+  graph.render();
+  const std::vector<glm::vec3> normals = {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}, {0.6f, 0.48f, 0.64f}};
+  std::printf("%s: N, E/(pi L) per normal, worst relative error\n",
+              anisotropic ? "anisotropic" : "isotropic");
+  for (int n = 1; n <= 16; ++n) {
+    std::vector<Probe> probes;
+    for (const glm::vec3& normal : normals) probes.push_back({glm::vec3(0.0f), normal});
+    ProbeSettings s;
+    s.diffuse_cones = n;
+    s.anisotropic = anisotropic;
+    const std::vector<ProbeResult> results =
+        run_probes(graph, "voxel.clipmap_info", filtered_resources(anisotropic), probes, s);
+    float worst = 0.0f;
+    std::printf("  N=%2d:", n);
+    for (const ProbeResult& r : results) {
+      const float ratio = r.irradiance.g / static_cast<float>(M_PI);
+      std::printf(" %.4f", ratio);
+      worst = std::max(worst, std::abs(ratio - 1.0f));
+      EXPECT_TRUE(std::isfinite(ratio));
+    }
+    std::printf("  error %.2f%%\n", 100.0f * worst);
+    EXPECT_LT(worst, anisotropic ? (n >= 4 ? 0.05f : 0.10f) : 0.12f) << "N = " << n;
+  }
+}
+
+// One cone towards an opaque wall two voxels thick: fully occluded, and the radiance it
+// returns is the wall's (L x opacity, since the wall is uniform).
+TEST_P(ConeTraceEnergyTest, OpaqueWallStopsTheCone) {
+  const bool anisotropic = GetParam();
+  VolumeData data;
+  fill_radiance(data, [](glm::vec3 c) {
+    return c.x >= 0.5f && c.x <= 0.625f ? glm::vec4(2.0f, 2.0f, 2.0f, 1.0f) : glm::vec4(0.0f);
+  });
+  VolumeGraph graph(filter_graph(kR, 1, anisotropic), &data, scene::make_builtin_scene("empty"));
+  graph.render();
+  ProbeSettings s;
+  s.single_cone = true;
+  s.anisotropic = anisotropic;
+  for (float tan_half : {0.05f, 0.2f, 0.577f}) {
+    s.tan_half_angle = tan_half;
+    const std::vector<ProbeResult> r =
+        run_probes(graph, "voxel.clipmap_info", filtered_resources(anisotropic),
+                   {{glm::vec3(0.0f), glm::vec3(1, 0, 0)}}, s);
+    const float opacity = 1.0f - r[0].visibility;
+    std::printf("tan %.3f: opacity %.4f radiance %.4f\n", tan_half, opacity, r[0].irradiance.r);
+    // A narrow cone samples the wall at its own resolution and is stopped. Wider cones sample
+    // mips where the 2-voxel wall fills part of a voxel: the directional volumes keep it
+    // opaque along the axis (trilinear blending with the empty neighbour leaves a little),
+    // the isotropic mips dilute it to 2/8 at mip 3, a known leak of isotropic filtering.
+    const float required = tan_half <= 0.05f ? 0.99f : (anisotropic ? 0.9f : 0.15f);
+    EXPECT_GE(opacity, required) << "tan(half angle) " << tan_half;
+    EXPECT_NEAR(r[0].irradiance.r, 2.0f * opacity, 0.02f) << "tan(half angle) " << tan_half;
+    // Away from the wall a narrow cone hits nothing (wide ones reach coarse mips that
+    // contain the wall, as cone tracing should).
+    if (tan_half > 0.2f) continue;
+    s.max_distance = 1.5f;
+    const std::vector<ProbeResult> away =
+        run_probes(graph, "voxel.clipmap_info", filtered_resources(anisotropic),
+                   {{glm::vec3(0.0f), glm::vec3(-1, 0, 0)}}, s);
+    EXPECT_LT(1.0f - away[0].visibility, 0.02f) << "tan(half angle) " << tan_half;
+    s.max_distance = 1e6f;
+  }
+}
+
+// Semi-transparent fog (opacity 0.1 per voxel, radiance 1): the opacity a cone accumulates
+// over a fixed distance must not depend on the step factor beta, because each sample's
+// opacity is corrected to the step length: 1 - (1 - a)^(step / voxel).
+TEST_P(ConeTraceEnergyTest, StepFactorDoesNotChangeTransmittance) {
+  const bool anisotropic = GetParam();
+  VolumeData data;
+  fill_radiance(data, [](glm::vec3) { return glm::vec4(1.0f, 1.0f, 1.0f, 0.1f); });
+  VolumeGraph graph(filter_graph(kR, 1, anisotropic), &data, scene::make_builtin_scene("empty"));
+  graph.render();
+  ProbeSettings s;
+  s.single_cone = true;
+  s.anisotropic = anisotropic;
+  s.tan_half_angle = 0.01f;  // stays at the finest level
+  s.max_distance = 0.5f;     // 8 voxels: expected transmittance 0.9^8
+  std::vector<float> transmittance;
+  for (float beta : {0.25f, 0.5f, 1.0f}) {
+    s.step_factor = beta;
+    const std::vector<ProbeResult> r =
+        run_probes(graph, "voxel.clipmap_info", filtered_resources(anisotropic),
+                   {{glm::vec3(0.0f), glm::vec3(0, 0, 1)}}, s);
+    std::printf("beta %.2f: transmittance %.4f (exact %.4f)\n", beta, r[0].visibility,
+                std::pow(0.9f, 8.0f));
+    transmittance.push_back(r[0].visibility);
+  }
+  const float expected = std::pow(0.9f, 8.0f);
+  for (float t : transmittance) EXPECT_NEAR(t, expected, 0.05f);
+}
+
+// The same uniform emitter seen through a three-level clipmap (level edges 4, 8 and 16 m,
+// windows off-centre so the toroidal wrap and the level consistency of vct.filter are
+// exercised): cones cross from level to level and still return pi * L.
+TEST_F(ConeTraceClipmapTest, UniformEmitterAcrossThreeLevels) {
+  VolumeData data;
+  fill_radiance(
+      data,
+      [](glm::vec3 c) {
+        return glm::length(c) >= 1.0f ? glm::vec4(1.0f, 1.0f, 1.0f, 1.0f) : glm::vec4(0.0f);
+      },
+      3);
+  VolumeGraph graph(filter_graph(kR, 3, true), &data, scene::make_builtin_scene("empty"));
+  graph.render();
+  for (int n : {1, 6, 16}) {
+    ProbeSettings s;
+    s.diffuse_cones = n;
+    const std::vector<ProbeResult> r = run_probes(
+        graph, "voxel.clipmap_info", filtered_resources(true),
+        {{glm::vec3(0.0f), glm::vec3(0, 1, 0)}, {glm::vec3(0.0f), glm::vec3(0.6f, 0.48f, 0.64f)}},
+        s);
+    for (const ProbeResult& p : r) {
+      const float ratio = p.irradiance.g / static_cast<float>(M_PI);
+      std::printf("3 levels, N=%2d: E/(pi L) = %.4f\n", n, ratio);
+      EXPECT_NEAR(ratio, 1.0f, 0.05f) << "N = " << n;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, ConeTraceEnergyTest, ::testing::Values(false, true),
+                         [](const auto& mode) { return mode.param ? "anisotropic" : "isotropic"; });
+
+}  // namespace
+}  // namespace voxgi::test

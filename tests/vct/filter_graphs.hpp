@@ -1,0 +1,53 @@
+#pragma once
+// Graph texts of the volume-level tests: uploaded radiance -> vct.filter (isotropic or
+// anisotropic), with the filtered volumes persistent so tests can read them afterwards.
+
+#include <string>
+
+namespace voxgi::test {
+
+inline std::string filter_graph(int resolution, int levels, bool anisotropic) {
+  const std::string clipmap = "{ \"type\": \"clipmap\", \"format\": \"rgba16f\", \"resolution\": " +
+                              std::to_string(resolution) +
+                              ", \"levels\": " + std::to_string(levels);
+  std::string resources =
+      "\"voxel.clipmap_info\": { \"type\": \"buffer\", \"size\": 288, \"persistent\": true },\n"
+      "\"vct.radiance\": " +
+      clipmap + ", \"persistent\": true },\n";
+  std::string outputs;
+  if (anisotropic) {
+    const char* slots[] = {"pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"};
+    for (const char* slot : slots) {
+      resources += std::string("\"vct.") + slot + "\": " + clipmap +
+                   ", \"mips\": \"full\", \"persistent\": true },\n";
+      outputs +=
+          std::string(outputs.empty() ? "" : ", ") + "\"" + slot + "\": \"vct." + slot + "\"";
+    }
+  } else {
+    resources += "\"vct.filtered\": " + clipmap + ", \"mips\": \"full\", \"persistent\": true },\n";
+    outputs = "\"filtered\": \"vct.filtered\"";
+  }
+  resources.erase(resources.size() - 2);  // the last ",\n"
+  return "{ \"name\": \"vct-filter-test\",\n \"resources\": {\n" + resources +
+         "},\n \"passes\": [\n"
+         " { \"name\": \"volumes\", \"type\": \"vcttest.volumes\",\n"
+         "   \"out\": { \"clipmap_info\": \"voxel.clipmap_info\", \"radiance\": \"vct.radiance\" } "
+         "},\n"
+         " { \"name\": \"filter\", \"type\": \"vct.filter\", \"params\": { \"mode\": \"" +
+         std::string(anisotropic ? "anisotropic" : "isotropic") +
+         "\" },\n"
+         "   \"in\": { \"clipmap_info\": \"voxel.clipmap_info\", \"radiance\": \"vct.radiance\" "
+         "},\n"
+         "   \"out\": { " +
+         outputs +
+         " } }\n"
+         " ],\n \"outputs\": { " +
+         outputs + " } }\n";
+}
+
+inline std::vector<std::string> filtered_resources(bool anisotropic) {
+  if (!anisotropic) return {"vct.filtered"};
+  return {"vct.pos_x", "vct.neg_x", "vct.pos_y", "vct.neg_y", "vct.pos_z", "vct.neg_z"};
+}
+
+}  // namespace voxgi::test

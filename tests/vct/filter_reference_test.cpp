@@ -1,0 +1,225 @@
+// vct.filter against a CPU reference on a random 16^3 clipmap with two levels (so the level
+// consistency rule is exercised too), in both modes, every mip of every volume. Random
+// values include NaN, Inf and out-of-range opacity, which the filter must scrub to zero.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+#include <glm/gtc/packing.hpp>
+
+#include "engine/scene/builtin_scenes.hpp"
+#include "tests/gpu/gpu_test_env.hpp"
+#include "tests/vct/filter_graphs.hpp"
+#include "tests/vct/volume_harness.hpp"
+
+namespace voxgi::test {
+namespace {
+
+constexpr int kR = 16;
+constexpr int kLevels = 2;
+
+glm::vec4 scrub(glm::vec4 v) {
+  glm::vec4 out;
+  for (int c = 0; c < 3; ++c) out[c] = std::isfinite(v[c]) ? glm::clamp(v[c], 0.0f, 65504.0f) : 0;
+  out.a = std::isfinite(v.a) ? glm::clamp(v.a, 0.0f, 1.0f) : 0.0f;
+  return out;
+}
+
+glm::vec4 over(glm::vec4 front, glm::vec4 back) {
+  return {glm::vec3(front) + (1.0f - front.a) * glm::vec3(back),
+          front.a + (1.0f - front.a) * back.a};
+}
+
+// Children ordered x fastest; volume 2k+s looks along axis k, s = 0 positive.
+glm::vec4 filter_children(const glm::vec4 c[8], int volume, bool anisotropic) {
+  glm::vec4 sum(0.0f);
+  if (!anisotropic) {
+    for (int i = 0; i < 8; ++i) sum += c[i];
+    return sum / 8.0f;
+  }
+  const int stride = 1 << (volume / 2);
+  const bool positive = volume % 2 == 0;
+  for (int i = 0; i < 8; ++i) {
+    if (i & stride) continue;
+    sum += positive ? over(c[i], c[i + stride]) : over(c[i + stride], c[i]);
+  }
+  return sum / 4.0f;
+}
+
+// volumes[v][mip]: texels of the whole stacked image at that mip.
+using Reference = std::vector<std::vector<std::vector<glm::vec4>>>;
+
+Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, bool anisotropic) {
+  const int volumes = anisotropic ? 6 : 1;
+  int mips = 0;
+  while ((kR >> mips) > 0) ++mips;
+  Reference ref(volumes, std::vector<std::vector<glm::vec4>>(mips));
+  for (int v = 0; v < volumes; ++v) {
+    for (int m = 0; m < mips; ++m) {
+      const size_t rm = size_t(kR >> m);
+      ref[v][m].assign(rm * rm * rm * kLevels, glm::vec4(0.0f));
+    }
+  }
+  auto idx = [](glm::ivec3 t, int rm) { return (size_t(t.z) * rm + t.y) * rm + t.x; };
+  for (int level = 0; level < kLevels; ++level) {
+    for (int z = 0; z < kR; ++z) {
+      for (int y = 0; y < kR; ++y) {
+        for (int x = 0; x < kR; ++x) {
+          const glm::ivec3 window(x, y, z);
+          const glm::ivec3 texel = clipmap_texel(info, window, level);
+          bool from_finer = false;
+          glm::ivec3 first(0);
+          if (level > 0) {
+            const glm::ivec3 world = window + glm::ivec3(info.levels[level].origin_voxel);
+            first = world * 2 - glm::ivec3(info.levels[level - 1].origin_voxel);
+            from_finer = glm::all(glm::greaterThanEqual(first, glm::ivec3(0))) &&
+                         glm::all(glm::lessThan(first + 1, glm::ivec3(kR)));
+          }
+          for (int v = 0; v < volumes; ++v) {
+            glm::vec4 value;
+            if (from_finer) {
+              glm::vec4 c[8];
+              for (int i = 0; i < 8; ++i) {
+                const glm::ivec3 o(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+                c[i] = ref[v][0][idx(clipmap_texel(info, first + o, level - 1), kR)];
+              }
+              value = filter_children(c, v, anisotropic);
+            } else {
+              const glm::vec4 r = scrub(radiance.at(texel));
+              value = glm::vec4(glm::vec3(r) * r.a, r.a);
+            }
+            ref[v][0][idx(texel, kR)] = scrub(value);
+          }
+        }
+      }
+    }
+  }
+  for (int m = 1; m < mips; ++m) {
+    const int rm = kR >> m;
+    const int rs = rm * 2;
+    for (int z = 0; z < rm * kLevels; ++z) {
+      for (int y = 0; y < rm; ++y) {
+        for (int x = 0; x < rm; ++x) {
+          const int level = z / rm;
+          const glm::ivec3 local(x, y, z - level * rm);
+          for (int v = 0; v < volumes; ++v) {
+            glm::vec4 c[8];
+            for (int i = 0; i < 8; ++i) {
+              glm::ivec3 t = local * 2 + glm::ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+              t.z += level * rs;
+              c[i] = ref[v][m - 1][idx(t, rs)];
+            }
+            ref[v][m][idx({x, y, z}, rm)] = scrub(filter_children(c, v, anisotropic));
+          }
+        }
+      }
+    }
+  }
+  return ref;
+}
+
+class FilterReferenceTest : public GpuTest, public ::testing::WithParamInterface<bool> {};
+
+TEST_P(FilterReferenceTest, MatchesCpuReferenceOnEveryMip) {
+  const bool anisotropic = GetParam();
+  VolumeData data;
+  // Windows offset from the origin so that the toroidal wrap is not the identity.
+  data.info = make_clipmap_info(kR, kLevels, 0.25f, glm::vec3(1.3f, -0.7f, 2.9f));
+  std::mt19937 rng(1234);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  CpuClipmap radiance(kR, kLevels);
+  for (glm::vec4& t : radiance.texels) {
+    const float roll = unit(rng);
+    if (roll < 0.4f) {
+      t = glm::vec4(0.0f);
+    } else {
+      t = glm::vec4(4.0f * unit(rng), 4.0f * unit(rng), 4.0f * unit(rng), unit(rng));
+      if (roll > 0.98f) t.r = std::numeric_limits<float>::quiet_NaN();
+      if (roll > 0.96f && roll <= 0.98f) t.g = std::numeric_limits<float>::infinity();
+      if (roll > 0.94f && roll <= 0.96f) t.a = 3.0f;  // opacity out of range
+    }
+    // Round to half precision as the GPU stores it.
+    for (int c = 0; c < 4; ++c) {
+      if (std::isfinite(t[c]) && t[c] < 65504.0f) {
+        t[c] = glm::unpackHalf1x16(glm::packHalf1x16(t[c]));
+      }
+    }
+  }
+  data.volumes["radiance"] = radiance;
+  VolumeGraph graph(filter_graph(kR, kLevels, anisotropic), &data,
+                    scene::make_builtin_scene("empty"));
+  graph.render();
+  const Reference ref = reference_filter(data.info, radiance, anisotropic);
+  const std::vector<std::string> names = filtered_resources(anisotropic);
+  for (size_t v = 0; v < names.size(); ++v) {
+    for (size_t m = 0; m < ref[v].size(); ++m) {
+      const std::vector<glm::vec4> gpu = graph.download(names[v], static_cast<uint32_t>(m));
+      ASSERT_EQ(gpu.size(), ref[v][m].size()) << names[v] << " mip " << m;
+      float worst = 0.0f;
+      size_t bad = 0;
+      for (size_t i = 0; i < gpu.size(); ++i) {
+        for (int c = 0; c < 4; ++c) {
+          const float g = gpu[i][c];
+          const float r = ref[v][m][i][c];
+          // Half precision: 11-bit mantissa, plus rounding at every mip of the chain.
+          const float tolerance = 2e-3f + 4e-3f * std::abs(r);
+          if (!std::isfinite(g) || std::abs(g - r) > tolerance) ++bad;
+          worst = std::max(worst, std::abs(g - r));
+        }
+      }
+      EXPECT_EQ(bad, 0u) << names[v] << " mip " << m << " worst difference " << worst;
+      if (m == 0 || m + 1 == ref[v].size()) {
+        std::printf("%s mip %zu: worst |gpu - cpu| = %.2e\n", names[v].c_str(), m, worst);
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, FilterReferenceTest, ::testing::Values(false, true),
+                         [](const auto& mode) { return mode.param ? "anisotropic" : "isotropic"; });
+
+}  // namespace
+}  // namespace voxgi::test
+
+namespace voxgi::test {
+namespace {
+
+class FilterBehaviourTest : public GpuTest {};
+
+// The filter runs only when the radiance volume (or the clipmap info) was rewritten.
+TEST_F(FilterBehaviourTest, SkipsWhileTheRadianceIsUnchanged) {
+  VolumeData data;
+  data.info = make_clipmap_info(kR, 1, 0.25f, glm::vec3(0.0f));
+  data.volumes["radiance"] = CpuClipmap(kR, 1);
+  VolumeGraph graph(filter_graph(kR, 1, true), &data, scene::make_builtin_scene("empty"));
+  graph.render();
+  EXPECT_EQ(graph.skipped("filter"), "");
+  graph.render();
+  EXPECT_EQ(graph.skipped("filter"), "radiance volume unchanged");
+  ++data.version;
+  graph.render();
+  EXPECT_EQ(graph.skipped("filter"), "");
+}
+
+// A mode whose outputs are not bound is a clear error naming the pass and the field.
+TEST_F(FilterBehaviourTest, ModeWithoutItsOutputsNamesTheField) {
+  VolumeData data;
+  data.info = make_clipmap_info(kR, 1, 0.25f, glm::vec3(0.0f));
+  data.volumes["radiance"] = CpuClipmap(kR, 1);
+  try {
+    VolumeGraph graph(filter_graph(kR, 1, false), &data, scene::make_builtin_scene("empty"), 64, 64,
+                      {{"filter.mode", "anisotropic"}});
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("pass 'filter' field 'mode'"), std::string::npos) << message;
+    EXPECT_NE(message.find("pos_x"), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace voxgi::test

@@ -1,0 +1,52 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Test probe of lib/cone_trace.glsl: diffuse irradiance + AO at a point with a normal, or the
+// radiance and opacity of one cone.
+#include "lib/voxel_clipmap.glsl"
+#define VCT_VOLUME_BINDING 1
+#include "lib/cone_trace.glsl"
+
+layout(local_size_x = 64) in;
+
+struct ProbeIn {
+  vec4 position;
+  vec4 direction;
+};
+layout(set = 0, binding = 2, std430) readonly buffer Probes { ProbeIn probes[]; };
+layout(set = 0, binding = 3, std430) writeonly buffer Results { vec4 results[]; };
+
+layout(push_constant) uniform Push {
+  int single_cone;
+  int diffuse_cones;
+  float tan_half_angle;
+  float step_factor;
+  float max_distance;
+  float ao_falloff;
+  float normal_offset;
+  float start_distance;
+  uint count;
+} pc;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  vec3 p = voxel_relative(probes[i].position.xyz);
+  vec3 d = normalize(probes[i].direction.xyz);
+  VctTraceSettings s;
+  s.step_factor = pc.step_factor;
+  s.max_distance = pc.max_distance;
+  s.start_distance = pc.start_distance;
+  s.ao_falloff = pc.ao_falloff;
+  if (pc.single_cone != 0) {
+    VctCone cone;
+    cone.origin = p;
+    cone.direction = d;
+    cone.tan_half_angle = pc.tan_half_angle;
+    VctConeResult r = vct_trace_cone(cone, s);
+    results[i] = vec4(r.radiance, 1.0 - r.opacity);
+  } else {
+    float visibility;
+    vec3 e = vct_diffuse_irradiance(p, d, pc.diffuse_cones, pc.normal_offset, s, visibility);
+    results[i] = vec4(e, visibility);
+  }
+}

@@ -1,0 +1,133 @@
+#pragma once
+// Test harness for the vct passes on volumes the test writes itself: a test-only pass type
+// ("vcttest.volumes") uploads CPU clipmap data (clipmap info, albedo, normal, emission,
+// radiance) into the graph's resources, so injection, filtering and cone tracing can be
+// checked against analytic answers without a voxelizer. A probe compute shader
+// (tests/vct/shaders/probe.comp) evaluates lib/cone_trace.glsl at chosen points.
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/gpu/shader_compiler.hpp"
+#include "engine/graph/compiler.hpp"
+#include "engine/graph/executor.hpp"
+#include "engine/graph/pass.hpp"
+#include "engine/scene/gpu_scene.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace voxgi::test {
+
+// Mirrors VoxelClipmapInfo of shaders/lib/voxel_clipmap.glsl (std430, 288 bytes).
+struct ClipmapInfo {
+  glm::vec4 anchor{0.0f};
+  glm::uvec4 dims{0u};
+  struct Level {
+    glm::ivec4 origin_voxel{0};
+    glm::vec4 min_corner_size{0.0f};
+  } levels[8];
+};
+static_assert(sizeof(ClipmapInfo) == 288);
+
+// A clipmap of R^3 x L voxels as RGBA floats, addressed by level and window voxel with the
+// toroidal wrap of voxel_clipmap.glsl.
+struct CpuClipmap {
+  int resolution = 0;
+  int levels = 0;
+  std::vector<glm::vec4> texels;  // x fastest, then y, then z (z = level * R + wrapped z)
+
+  CpuClipmap() = default;
+  CpuClipmap(int r, int l)
+      : resolution(r), levels(l), texels(size_t(r) * r * r * l, glm::vec4(0)) {}
+  size_t index(glm::ivec3 texel) const {
+    return (size_t(texel.z) * resolution + texel.y) * resolution + texel.x;
+  }
+  glm::vec4& at(glm::ivec3 texel) { return texels[index(texel)]; }
+  const glm::vec4& at(glm::ivec3 texel) const { return texels[index(texel)]; }
+};
+
+// The texel of window voxel `window` of `level` (toroidal, as voxel_texel() in GLSL).
+glm::ivec3 clipmap_texel(const ClipmapInfo& info, glm::ivec3 window, int level);
+
+// Level l of a single-anchor clipmap: voxel size base * 2^l, windows centred on `centre`
+// snapped to whole voxels (origin_voxel = round(centre / size) - R/2).
+ClipmapInfo make_clipmap_info(int resolution, int levels, float base_voxel, glm::vec3 centre,
+                              glm::vec3 anchor = glm::vec3(0.0f));
+
+// What "vcttest.volumes" uploads. Bump `version` after a change to upload again; otherwise
+// the pass skips (so downstream skip logic can be tested).
+struct VolumeData {
+  ClipmapInfo info{};
+  std::map<std::string, CpuClipmap> volumes;  // by output slot: albedo, normal, emission, radiance
+  uint64_t version = 1;
+};
+
+// Registers "vcttest.volumes" into `registry`; the passes read `data` at execute().
+void register_volume_pass(graph::Registry& registry, const VolumeData* data);
+
+// A graph from JSON text, with the vct (and common) plugins plus the test pass type.
+class VolumeGraph {
+ public:
+  VolumeGraph(const std::string& graph_json, const VolumeData* data, scene::Scene scene,
+              uint32_t width = 64, uint32_t height = 64,
+              std::map<std::string, std::string> overrides = {});
+  ~VolumeGraph();
+
+  // Renders `frames` frames with `camera` (view from eye to target, 60 degree fov).
+  void render(int frames = 1, bool lights_changed = false);
+  void set_camera(glm::vec3 eye, glm::vec3 target);
+
+  // RGBA floats of one mip of a graph image resource (3D: the whole mip).
+  std::vector<glm::vec4> download(const std::string& resource, uint32_t mip = 0);
+  graph::Executor& executor() { return *executor_; }
+  const graph::CompiledGraph& compiled() const { return compiled_; }
+  gpu::ShaderCompiler& shaders() { return *shaders_; }
+  // The skip reason of pass `name` in the last frame ("" when it ran).
+  std::string skipped(const std::string& pass) const;
+
+ private:
+  graph::Registry registry_;
+  graph::CompiledGraph compiled_;
+  scene::Scene scene_;
+  std::unique_ptr<gpu::ShaderCompiler> shaders_;
+  std::unique_ptr<scene::GpuScene> gpu_scene_;
+  std::unique_ptr<graph::Executor> executor_;
+  glm::vec3 eye_{0.0f, 0.0f, 5.0f};
+  glm::vec3 target_{0.0f};
+  uint32_t width_, height_;
+  bool first_ = true;
+};
+
+// One probe of the cone-trace library: a point and a normal (diffuse) or cone direction.
+struct Probe {
+  glm::vec3 position;
+  glm::vec3 direction;
+};
+struct ProbeResult {
+  glm::vec3 irradiance;  // diffuse mode: E; cone mode: radiance along the cone
+  float visibility;      // diffuse mode: AO visibility; cone mode: 1 - opacity
+};
+struct ProbeSettings {
+  bool single_cone = false;  // true: one cone along `direction`
+  float tan_half_angle = 0.577f;
+  int diffuse_cones = 6;
+  float step_factor = 1.0f;
+  float max_distance = 1e6f;
+  float ao_falloff = 0.0f;
+  float normal_offset = 0.0f;  // metres
+  float start_distance = 0.0f;
+  bool anisotropic = true;
+};
+
+// Runs the probe shader against the graph's clipmap info buffer and filtered volumes
+// (`filtered` or the six directional resources given in order +X..-Z).
+std::vector<ProbeResult> run_probes(VolumeGraph& graph, const std::string& info_resource,
+                                    const std::vector<std::string>& volume_resources,
+                                    const std::vector<Probe>& probes, const ProbeSettings& s);
+
+}  // namespace voxgi::test

@@ -1,0 +1,95 @@
+#include "engine/runtime/graph_instance.hpp"
+
+#include "engine/runtime/runtime.hpp"
+
+namespace voxgi::runtime {
+
+FrameView frame_view(const scene::Camera& camera, float viewport_aspect) {
+  FrameView view;
+  view.view = scene::view_matrix(camera);
+  view.proj = scene::projection_matrix(camera, viewport_aspect);
+  view.position = glm::vec3(camera.world[3]);
+  view.znear = camera.znear;
+  view.zfar = camera.zfar;
+  return view;
+}
+
+GraphInstance::GraphInstance(Runtime& runtime, const std::filesystem::path& graph_file,
+                             GraphSettings settings)
+    : GraphInstance(runtime, graph::load_graph_file(graph_file), std::move(settings)) {}
+
+GraphInstance::GraphInstance(Runtime& runtime, graph::GraphDesc desc, GraphSettings settings)
+    : runtime_(runtime), desc_(std::move(desc)), settings_(std::move(settings)) {
+  graph::GraphDesc compiled_desc = desc_;
+  for (const auto& [name, resource] : settings_.extra_outputs) {
+    graph::OutputDesc output;
+    output.name = name;
+    output.resource = resource;
+    compiled_desc.outputs.push_back(output);
+  }
+  runtime_.load_plugins_for(compiled_desc);
+  graph::CompileOptions options;
+  options.viewport_width = settings_.width;
+  options.viewport_height = settings_.height;
+  options.scene_features = runtime_.scene().features().as_map();
+  options.overrides = settings_.overrides;
+  options.full_barriers = settings_.full_barriers;
+  options.alias_transients = settings_.alias_transients;
+  const graph::CompiledGraph compiled = graph::compile(compiled_desc, runtime_.registry(), options);
+  executor_ = std::make_unique<graph::Executor>(runtime_.context(), runtime_.shaders(),
+                                                runtime_.registry());
+  executor_->build(compiled, runtime_.scene(), runtime_.gpu_scene());
+}
+
+GraphInstance::~GraphInstance() = default;
+
+void GraphInstance::render(const FrameView& view, double time, const FrameChanges& changes) {
+  graph::Executor::FrameInput input;
+  input.view = view.view;
+  input.proj = view.proj;
+  input.camera_position = view.position;
+  input.znear = view.znear;
+  input.zfar = view.zfar;
+  input.time = time;
+  // The first frame of an executor has nothing to reuse.
+  input.camera_changed = changes.camera || frames_ == 0;
+  input.lights_changed = changes.lights || frames_ == 0;
+  input.geometry_changed = changes.geometry || frames_ == 0;
+  executor_->render(input);
+  ++frames_;
+}
+
+image::ImageRGBA32F GraphInstance::read(const std::string& output) {
+  image::ImageRGBA32F picture;
+  picture.pixels = executor_->read_output(output, picture.width, picture.height);
+  // Volumes come back whole (all slices), layered images as layer 0; see slice_of().
+  return picture;
+}
+
+bool GraphInstance::has_output(const std::string& output) const {
+  return executor_->compiled().outputs.count(output) > 0;
+}
+
+const std::vector<graph::Executor::PassTiming>& GraphInstance::timings() const {
+  return executor_->timings();
+}
+
+bool GraphInstance::set_param(const std::string& key, const std::string& value) {
+  const bool live = executor_->set_param(key, value);
+  settings_.overrides[key] = value;
+  return live;
+}
+
+const graph::ParamValue* GraphInstance::param(const std::string& pass,
+                                              const std::string& name) const {
+  const graph::CompiledPass* compiled_pass = executor_->compiled().find_pass(pass);
+  if (!compiled_pass) return nullptr;
+  auto it = compiled_pass->params.find(name);
+  return it == compiled_pass->params.end() ? nullptr : &it->second;
+}
+
+const graph::CompiledGraph& GraphInstance::compiled() const {
+  return executor_->compiled();
+}
+
+}  // namespace voxgi::runtime

@@ -1,0 +1,357 @@
+// The viewer as a user runs it: a window on a private Xvfb display, driven by a script.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#include "engine/image/image.hpp"
+#include "tests/apps/child_process.hpp"
+#include "tests/gpu/gpu_test_env.hpp"
+#include "tests/viewer/viewer_test_support.hpp"
+#include "tests/viewer/xvfb_display.hpp"
+
+namespace voxgi::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ViewerSessionTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { xvfb_ = std::make_unique<XvfbDisplay>(); }
+  static void TearDownTestSuite() { xvfb_.reset(); }
+
+  void SetUp() override {
+    if (!xvfb_->installed()) {
+      if (running_in_ci()) FAIL() << "Xvfb is not installed (needed under CI=true): install xvfb";
+      GTEST_SKIP() << "Xvfb is not installed: install xvfb to run the viewer tests";
+    }
+    ASSERT_TRUE(xvfb_->running()) << xvfb_->error();
+    dir_ = make_temp_dir("voxgi-viewer-test");
+  }
+
+  ProcessOptions options() const {
+    ProcessOptions o;
+    o.working_dir = dir_;
+    o.env["DISPLAY"] = xvfb_->display();
+    o.env["WAYLAND_DISPLAY"] = std::nullopt;
+    if (!std::getenv("XDG_RUNTIME_DIR")) o.env["XDG_RUNTIME_DIR"] = "/tmp";
+    o.timeout = std::chrono::milliseconds(120000);
+    return o;
+  }
+
+  ProcessResult viewer(const std::vector<std::string>& args) const {
+    std::vector<std::string> all = {"--validation", "--width", "96", "--height", "96"};
+    all.insert(all.end(), args.begin(), args.end());
+    return run_process(VOXGI_VIEWER_EXE, all, options());
+  }
+
+  static image::ImageRGBA32F png(const fs::path& file) { return image::read_png(file); }
+
+  static std::unique_ptr<XvfbDisplay> xvfb_;
+  fs::path dir_;
+};
+
+std::unique_ptr<XvfbDisplay> ViewerSessionTest::xvfb_;
+
+TEST_F(ViewerSessionTest, ScriptedSessionSwitchesGraphsEditsParametersAndTakesScreenshots) {
+  write_file(dir_ / "a.json", test_graph_text(0.05));
+  write_file(dir_ / "b.json", test_graph_text(0.4));
+  write_file(dir_ / "session.txt", R"(# keys, a parameter, a graph switch, split view, screenshots
+frames 2
+screenshot shots/start
+set ambient.radiance=0.2
+screenshot shots/param
+key 2
+screenshot shots/switched
+key Tab
+key W
+screenshot shots/moved
+light 0 intensity 0
+screenshot shots/unlit
+light 0 intensity 1
+key F2
+wipe 0.5
+screenshot shots/split
+diff on 8
+screenshot shots/difference
+diff off
+key F2
+timings shots/timings.json
+inspect gbuffer.normal
+exposure 0
+screenshot shots/normals
+inspect off
+window 700 500
+frames 2
+window-shot shots/window.png
+quit
+)");
+  const ProcessResult run =
+      viewer({"--graph", "a.json", "--graph", "b.json", "--script", "session.txt"});
+  ASSERT_EQ(run.exit_code, 0) << run.describe();
+  EXPECT_EQ(run.err.find("vulkan validation"), std::string::npos) << run.err;
+
+  const fs::path shots = dir_ / "shots";
+  for (const char* name :
+       {"start", "param", "switched", "moved", "unlit", "split", "difference", "normals"}) {
+    ASSERT_TRUE(fs::exists(shots / (std::string(name) + ".png"))) << name << "\n" << run.err;
+    ASSERT_TRUE(fs::exists(shots / (std::string(name) + ".exr"))) << name;
+  }
+  const image::ImageRGBA32F start = png(shots / "start.png");
+  const image::ImageRGBA32F param = png(shots / "param.png");
+  const image::ImageRGBA32F switched = png(shots / "switched.png");
+  const image::ImageRGBA32F moved = png(shots / "moved.png");
+  const image::ImageRGBA32F split = png(shots / "split.png");
+  const image::ImageRGBA32F difference = png(shots / "difference.png");
+  const image::ImageRGBA32F normals = png(shots / "normals.png");
+  EXPECT_EQ(start.width, 96u);
+  EXPECT_EQ(start.height, 96u);
+  EXPECT_GT(distinct_colors(start), 50u) << "the first screenshot looks blank";
+  // More ambient light brightens the frame; graph B (ambient 0.4) differs from A at 0.2.
+  EXPECT_GT(compare_images(start, param).mean_abs, 0.02);
+  EXPECT_GT(compare_images(param, switched).mean_abs, 0.02);
+  EXPECT_GT(compare_images(param, moved).mean_abs, 0.005) << "the W key did not move the camera";
+  EXPECT_LT(mean_rgb(png(shots / "unlit.png")), mean_rgb(moved) - 0.02)
+      << "switching the light off should darken the frame";
+  // The split shows A on the left and B on the right.
+  EXPECT_GT(compare_images(moved, split).max_abs, 0.05);
+  EXPECT_GT(distinct_colors(difference), 2u);
+  EXPECT_GT(compare_images(moved, normals).mean_abs, 0.02);
+
+  std::ifstream timings_file(shots / "timings.json");
+  const nlohmann::json timings = nlohmann::json::parse(timings_file);
+  ASSERT_TRUE(timings.contains("passes"));
+  std::vector<std::string> passes;
+  for (const auto& p : timings["passes"]) passes.push_back(p["pass"].get<std::string>());
+  EXPECT_NE(std::find(passes.begin(), passes.end(), "lighting"), passes.end());
+
+  const image::ImageRGBA32F window = png(shots / "window.png");
+  EXPECT_EQ(window.width, 700u) << "the swapchain should follow the resized window";
+  EXPECT_EQ(window.height, 500u);
+}
+
+TEST_F(ViewerSessionTest, ScreenshotMatchesVoxgiRenderOfTheSameFrame) {
+  write_file(dir_ / "graph.json", test_graph_text(0.05));
+  write_file(dir_ / "session.txt", "frames 3\nscreenshot viewer\nquit\n");
+  const ProcessResult run = viewer({"--graph", "graph.json", "--script", "session.txt"});
+  ASSERT_EQ(run.exit_code, 0) << run.describe();
+
+  ProcessOptions render_options = options();
+  const ProcessResult render = run_process(VOXGI_EXE,
+                                           {"render", "--graph", "graph.json", "--width", "96",
+                                            "--height", "96", "--frames", "3", "--out", "render"},
+                                           render_options);
+  ASSERT_EQ(render.exit_code, 0) << render.describe();
+
+  // The screenshot is the viewer's image area without the UI.
+  const ImageDifference display =
+      compare_images(png(dir_ / "viewer.png"), png(dir_ / "render.png"));
+  EXPECT_LE(display.max_abs, 2.0 / 255.0);
+  const ImageDifference linear =
+      compare_images(image::read_exr(dir_ / "viewer.exr"), image::read_exr(dir_ / "render.exr"));
+  EXPECT_LE(linear.max_abs, 1e-3);
+  std::cout << "viewer screenshot vs voxgi render: display max " << display.max_abs * 255.0
+            << "/255, linear max " << linear.max_abs << "\n";
+}
+
+TEST_F(ViewerSessionTest, GltfCamerasAreSelectableAndMatchVoxgiRender) {
+  const fs::path scene = fs::path(VOXGI_SHARED_DIR) / "scenes/cornell-box/cornell-box.gltf";
+  if (!fs::exists(scene)) GTEST_SKIP() << "shared scenes are absent: " << scene;
+  write_file(dir_ / "graph.json", test_graph_text(0.05));
+  write_file(dir_ / "session.txt",
+             "frames 1\ncamera fly\nmove 0.3 0 0\nscreenshot moved\ncamera cornell_camera\n"
+             "frames 2\nscreenshot chosen\nquit\n");
+  const ProcessResult run =
+      viewer({"--scene", scene.string(), "--graph", "graph.json", "--script", "session.txt"});
+  ASSERT_EQ(run.exit_code, 0) << run.describe();
+  const ProcessResult render = run_process(
+      VOXGI_EXE,
+      {"render", "--scene", scene.string(), "--camera", "cornell_camera", "--graph", "graph.json",
+       "--width", "96", "--height", "96", "--frames", "3", "--out", "render"},
+      options());
+  ASSERT_EQ(render.exit_code, 0) << render.describe();
+  EXPECT_LE(compare_images(png(dir_ / "chosen.png"), png(dir_ / "render.png")).max_abs,
+            2.0 / 255.0);
+  EXPECT_GT(compare_images(png(dir_ / "moved.png"), png(dir_ / "render.png")).mean_abs, 0.005);
+
+  write_file(dir_ / "bad-camera.txt", "camera nobody\n");
+  const ProcessResult bad =
+      viewer({"--scene", scene.string(), "--graph", "graph.json", "--script", "bad-camera.txt"});
+  EXPECT_EQ(bad.exit_code, 1) << bad.describe();
+  EXPECT_NE(bad.err.find("cornell_camera"), std::string::npos) << "lists the cameras\n" << bad.err;
+}
+
+TEST_F(ViewerSessionTest, AnimationsPauseStepAndPlay) {
+  write_file(dir_ / "slide.gltf", animated_gltf_text());
+  write_file(dir_ / "graph.json", test_graph_text(0.05));
+  write_file(dir_ / "session.txt", R"(camera overview
+frames 2
+screenshot t0
+frames 2
+screenshot t0-paused
+step 6
+screenshot t1
+play
+frames 3
+screenshot t2
+pause
+light 0 color 1 0.2 0.2
+light 0 position 0 1.2 0
+screenshot lit-red
+quit
+)");
+  const ProcessResult run =
+      viewer({"--scene", "slide.gltf", "--graph", "graph.json", "--script", "session.txt"});
+  ASSERT_EQ(run.exit_code, 0) << run.describe();
+  EXPECT_EQ(run.err.find("vulkan validation"), std::string::npos) << run.err;
+  const image::ImageRGBA32F t0 = png(dir_ / "t0.png");
+  EXPECT_GT(distinct_colors(t0), 20u);
+  EXPECT_EQ(compare_images(t0, png(dir_ / "t0-paused.png")).max_abs, 0.0) << "paused time moved";
+  const image::ImageRGBA32F t1 = png(dir_ / "t1.png");
+  const image::ImageRGBA32F t2 = png(dir_ / "t2.png");
+  EXPECT_GT(compare_images(t0, t1).mean_abs, 1e-3) << "stepping should move the quad";
+  EXPECT_GT(compare_images(t1, t2).mean_abs, 1e-3) << "playing should move the quad";
+  // A red light: the red channel dominates.
+  const image::ImageRGBA32F red = png(dir_ / "lit-red.png");
+  double r = 0.0, g = 0.0;
+  for (size_t i = 0; i < red.pixels.size(); i += 4) {
+    r += red.pixels[i];
+    g += red.pixels[i + 1];
+  }
+  EXPECT_GT(r, 1.5 * g);
+}
+
+TEST_F(ViewerSessionTest, HotReloadPicksUpEditsAndKeepsTheLastGoodGraphOnErrors) {
+  const fs::path graph = dir_ / "live.json";
+  write_file(graph, test_graph_text(0.05));
+  write_file(dir_ / "session.txt", R"(frames 2
+screenshot before
+wait-for edited 60
+edit-check
+screenshot after-edit
+wait-for broken 60
+edit-check
+frames 2
+screenshot after-error
+quit
+)");
+  ProcessResult run;
+  std::thread session([&] { run = viewer({"--graph", "live.json", "--script", "session.txt"}); });
+  const bool before = wait_for_file(dir_ / "before.png", 90);
+  if (before) {
+    replace_file(graph, test_graph_text(0.5));
+    write_file(dir_ / "edited", "");
+  }
+  const bool after_edit = before && wait_for_file(dir_ / "after-edit.png", 90);
+  if (after_edit) {
+    replace_file(graph, "{ \"name\": \"broken\", \"passes\": [ { \"name\": 3 } ] ");
+    write_file(dir_ / "broken", "");
+  }
+  session.join();
+  ASSERT_TRUE(before && after_edit) << run.describe();
+  ASSERT_EQ(run.exit_code, 0) << run.describe();
+  EXPECT_EQ(run.err.find("vulkan validation"), std::string::npos) << run.err;
+
+  const image::ImageRGBA32F a = png(dir_ / "before.png");
+  const image::ImageRGBA32F b = png(dir_ / "after-edit.png");
+  const image::ImageRGBA32F c = png(dir_ / "after-error.png");
+  EXPECT_GT(compare_images(a, b).mean_abs, 0.02) << "the edit did not show";
+  EXPECT_EQ(compare_images(b, c).max_abs, 0.0) << "the last good graph should keep running";
+  // The error names the file and says the last good version keeps running.
+  EXPECT_NE(run.err.find("live.json"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("error"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("last good"), std::string::npos) << run.err;
+}
+
+TEST_F(ViewerSessionTest, ShaderEditsRecompileAndShaderErrorsKeepTheLastGoodBuild) {
+  // A private copy of the shader tree, so the edits touch nothing shared.
+  const fs::path shaders = dir_ / "shaders";
+  fs::copy(fs::path(VOXGI_SOURCE_DIR) / "shaders", shaders, fs::copy_options::recursive);
+  const fs::path ambient = shaders / "common" / "ambient.comp";
+  std::string source;
+  {
+    std::ifstream in(ambient);
+    std::stringstream text;
+    text << in.rdbuf();
+    source = text.str();
+  }
+  write_file(dir_ / "graph.json", test_graph_text(0.05));
+  write_file(dir_ / "session.txt", R"(frames 2
+screenshot before
+wait-for touched 60
+edit-check
+screenshot after-touch
+wait-for broken 60
+edit-check
+frames 2
+screenshot after-error
+quit
+)");
+  ProcessOptions o = options();
+  o.env["VOXGI_SHADER_DIR"] = shaders.string();
+  o.env["VOXGI_SHADER_CACHE"] = (dir_ / "spirv-cache").string();
+  ProcessResult run;
+  std::thread session([&] {
+    run = run_process(VOXGI_VIEWER_EXE,
+                      {"--validation", "--width", "96", "--height", "96", "--graph", "graph.json",
+                       "--script", "session.txt"},
+                      o);
+  });
+  const bool before = wait_for_file(dir_ / "before.png", 90);
+  if (before) {
+    replace_file(ambient, source + "\n// an edit that changes nothing\n");
+    write_file(dir_ / "touched", "");
+  }
+  const bool touched = before && wait_for_file(dir_ / "after-touch.png", 90);
+  if (touched) {
+    replace_file(ambient, source + "\nthis is not GLSL;\n");
+    write_file(dir_ / "broken", "");
+  }
+  session.join();
+  ASSERT_TRUE(before && touched) << run.describe();
+  ASSERT_EQ(run.exit_code, 0) << run.describe();
+  EXPECT_NE(run.err.find("reloaded"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("ambient.comp"), std::string::npos) << "the shader error names the file\n"
+                                                             << run.err;
+  EXPECT_EQ(compare_images(png(dir_ / "before.png"), png(dir_ / "after-touch.png")).max_abs, 0.0);
+  EXPECT_EQ(compare_images(png(dir_ / "before.png"), png(dir_ / "after-error.png")).max_abs, 0.0);
+}
+
+TEST_F(ViewerSessionTest, BadInputGivesAMessageAndANonZeroExit) {
+  write_file(dir_ / "graph.json", test_graph_text(0.05));
+  write_file(dir_ / "bad-graph.json",
+             "{ \"passes\": [ { \"name\": \"x\", \"type\": \"common.nope\" } ] }");
+  write_file(dir_ / "bad-script.txt", "frames 1\nfly-to-the-moon\n");
+
+  ProcessResult r = viewer({"--scene", "missing.gltf", "--graph", "graph.json"});
+  EXPECT_EQ(r.exit_code, 1) << r.describe();
+  EXPECT_NE(r.err.find("missing.gltf"), std::string::npos) << r.err;
+
+  r = viewer({"--graph", "bad-graph.json"});
+  EXPECT_EQ(r.exit_code, 1) << r.describe();
+  EXPECT_NE(r.err.find("bad-graph.json"), std::string::npos) << r.err;
+
+  r = viewer({"--graph", "graph.json", "--script", "bad-script.txt"});
+  EXPECT_EQ(r.exit_code, 1) << r.describe();
+  EXPECT_NE(r.err.find("bad-script.txt:2"), std::string::npos) << r.err;
+
+  r = viewer({"--width", "zero"});
+  EXPECT_EQ(r.exit_code, 2) << r.describe();
+
+  // No display at all.
+  ProcessOptions headless = options();
+  headless.env["DISPLAY"] = std::nullopt;
+  r = run_process(VOXGI_VIEWER_EXE, {"--graph", "graph.json"}, headless);
+  EXPECT_EQ(r.exit_code, 1) << r.describe();
+  EXPECT_NE(r.err.find("no display"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.exited()) << r.describe();
+}
+
+}  // namespace
+}  // namespace voxgi::test

@@ -74,8 +74,15 @@ layout(set = 1, binding = 2, std430) readonly buffer SceneLights {
   uint scene_lights_pad2;
   SceneLight scene_lights[];
 };
-layout(set = 1, binding = 3) uniform sampler2DArray scene_textures_srgb;
-layout(set = 1, binding = 4) uniform sampler2DArray scene_textures_linear;
+// A shader may bind the two texture arrays elsewhere (with its own sampler) by defining
+// SCENE_TEXTURE_SET, SCENE_SRGB_TEXTURE_BINDING and SCENE_LINEAR_TEXTURE_BINDING.
+#ifndef SCENE_TEXTURE_SET
+#define SCENE_TEXTURE_SET 1
+#define SCENE_SRGB_TEXTURE_BINDING 3
+#define SCENE_LINEAR_TEXTURE_BINDING 4
+#endif
+layout(set = SCENE_TEXTURE_SET, binding = SCENE_SRGB_TEXTURE_BINDING) uniform sampler2DArray scene_textures_srgb;
+layout(set = SCENE_TEXTURE_SET, binding = SCENE_LINEAR_TEXTURE_BINDING) uniform sampler2DArray scene_textures_linear;
 
 float scene_texture_lod = 0.0;  // with SCENE_TEXTURE_EXPLICIT_LOD
 

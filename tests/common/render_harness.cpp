@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 
 #include "engine/graph/graph_desc.hpp"
 #include "engine/graph/plugin_loader.hpp"
@@ -23,7 +24,24 @@ RenderHarness::RenderHarness(const RenderSetup& setup) : setup_(setup) {
                                                : scene::make_builtin_scene(setup.scene);
   }
   scene_.update_transforms();
-  camera_ = scene_.cameras.empty() ? scene::default_camera(scene_) : scene_.cameras.front();
+  if (!setup.camera.empty()) {
+    // By the camera's name or by the name of the node that carries it.
+    const scene::Camera* chosen = scene_.find_camera(setup.camera);
+    std::string names;
+    for (const scene::Camera& c : scene_.cameras) {
+      const bool has_node = c.node >= 0 && size_t(c.node) < scene_.nodes.size();
+      if (!chosen && has_node && scene_.nodes[size_t(c.node)].name == setup.camera) chosen = &c;
+      names += " '" + c.name + "'" +
+               (has_node ? " (node '" + scene_.nodes[size_t(c.node)].name + "')" : "");
+    }
+    if (!chosen) {
+      throw std::runtime_error(scene_.source + ": no camera named '" + setup.camera +
+                               "'; cameras:" + (names.empty() ? " none" : names));
+    }
+    camera_ = *chosen;
+  } else {
+    camera_ = scene_.cameras.empty() ? scene::default_camera(scene_) : scene_.cameras.front();
+  }
 
   const graph::GraphDesc desc =
       graph::load_graph_file(std::filesystem::path(VOXGI_SOURCE_DIR) / setup.graph);

@@ -26,6 +26,7 @@ struct RenderSetup {
   uint32_t width = 128;
   uint32_t height = 128;
   std::map<std::string, std::string> overrides;  // --set
+  std::string camera;  // a camera of the scene by name; empty: the first one (or a default)
 };
 
 struct RenderedImage {

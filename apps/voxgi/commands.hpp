@@ -18,13 +18,14 @@ int render_command(const std::vector<std::string>& args);
 int graph_command(const std::vector<std::string>& args);
 int passes_command(const std::vector<std::string>& args);
 int devices_command(const std::vector<std::string>& args);
+int bench_command(const std::vector<std::string>& args);
 
-// A graph path as given, or, for a relative path that does not exist from the working
-// directory, the same path inside the source tree (so `graphs/default.json` works anywhere).
-std::filesystem::path resolve_graph_path(const std::string& arg);
-
-// "--set key=value" arguments → overrides; throws UsageError naming the bad argument.
+// "--set key=value" arguments → overrides (runtime::parse_overrides); throws UsageError naming
+// the bad argument.
 std::map<std::string, std::string> parse_overrides(const std::vector<std::string>& sets);
+
+// runtime::choose_camera, its error naming the --camera option.
+scene::Camera choose_camera(const scene::Scene& scene, const std::string& name);
 
 class Args;
 

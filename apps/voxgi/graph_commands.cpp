@@ -5,8 +5,8 @@
 
 #include "apps/voxgi/cli_args.hpp"
 #include "apps/voxgi/commands.hpp"
-#include "apps/voxgi/scene_source.hpp"
 #include "engine/graph/dump.hpp"
+#include "engine/runtime/scene_source.hpp"
 
 namespace voxgi::cli {
 namespace {
@@ -42,8 +42,9 @@ int graph_command(const std::vector<std::string>& argv) {
   if (args.positional().size() != 1) {
     throw UsageError("voxgi graph " + verb + ": expected exactly one graph file");
   }
-  const graph::GraphDesc desc = graph::load_graph_file(resolve_graph_path(args.positional()[0]));
-  const scene::Scene scene = load_scene(args.value_or("scene", "cornell"));
+  const graph::GraphDesc desc =
+      graph::load_graph_file(runtime::resolve_graph_path(args.positional()[0]));
+  const scene::Scene scene = runtime::load_scene(args.value_or("scene", "cornell"));
   graph::Registry registry;
   load_plugins_for(desc, registry);
 

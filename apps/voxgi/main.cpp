@@ -2,34 +2,33 @@
 // 2 for a wrong command line, 1 for everything else.
 
 #include <exception>
-#include <filesystem>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "apps/voxgi/cli_args.hpp"
 #include "apps/voxgi/commands.hpp"
 #include "engine/gpu/context.hpp"
+#include "engine/runtime/scene_source.hpp"
 
 namespace voxgi::cli {
 
-std::filesystem::path resolve_graph_path(const std::string& arg) {
-  const std::filesystem::path path(arg);
-  if (std::filesystem::exists(path) || path.is_absolute()) return path;
-  const std::filesystem::path in_source = std::filesystem::path(VOXGI_REPO_DIR) / path;
-  return std::filesystem::exists(in_source) ? in_source : path;
+std::map<std::string, std::string> parse_overrides(const std::vector<std::string>& sets) {
+  try {
+    return runtime::parse_overrides(sets);
+  } catch (const runtime::OverrideError& e) {
+    throw UsageError("--set '" + e.setting +
+                     "': expected KEY=VALUE, e.g. --set lighting.pcf_radius=2");
+  }
 }
 
-std::map<std::string, std::string> parse_overrides(const std::vector<std::string>& sets) {
-  std::map<std::string, std::string> overrides;
-  for (const std::string& set : sets) {
-    const size_t eq = set.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw UsageError("--set '" + set + "': expected KEY=VALUE, e.g. --set lighting.pcf_radius=2");
-    }
-    overrides[set.substr(0, eq)] = set.substr(eq + 1);
+scene::Camera choose_camera(const scene::Scene& scene, const std::string& name) {
+  try {
+    return runtime::choose_camera(scene, name);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("--") + e.what());  // "--camera: scene ..."
   }
-  return overrides;
 }
 
 graph::CompileOptions compile_options(const Args& args, const scene::Scene& scene, uint32_t width,
@@ -71,7 +70,9 @@ constexpr const char* kUsage =
     "  graph check     validate a graph file\n"
     "  graph explain   print the compiled schedule, culled passes and resources\n"
     "  passes          list the registered pass types and their parameters\n"
-    "  devices         list the Vulkan devices\n";
+    "  devices         list the Vulkan devices\n"
+    "  bench           measure graphs against a reference: results and report (voxgi bench "
+    "--help)\n";
 
 }  // namespace
 
@@ -88,7 +89,8 @@ int main(int argc, char** argv) {
     if (args[0] == "graph") return graph_command(rest);
     if (args[0] == "passes") return passes_command(rest);
     if (args[0] == "devices") return devices_command(rest);
-    std::vector<std::string> commands = {"render", "graph", "passes", "devices"};
+    if (args[0] == "bench") return bench_command(rest);
+    std::vector<std::string> commands = {"render", "graph", "passes", "devices", "bench"};
     std::string message = "unknown command '" + args[0] + "'";
     if (std::string close = closest_match(args[0], commands); !close.empty()) {
       message += " (did you mean '" + close + "'?)";

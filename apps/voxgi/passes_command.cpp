@@ -10,20 +10,6 @@
 namespace voxgi::cli {
 namespace {
 
-std::string param_type_name(const graph::ParamSpec& p) {
-  switch (p.type) {
-    case graph::ParamType::Bool:
-      return "bool";
-    case graph::ParamType::Int:
-      return "int";
-    case graph::ParamType::Float:
-      return "float";
-    case graph::ParamType::Enum:
-      return "enum";
-  }
-  return "?";
-}
-
 std::string default_text(const graph::ParamSpec& p) {
   std::ostringstream out;
   switch (p.type) {
@@ -83,9 +69,9 @@ int passes_command(const std::vector<std::string>& argv) {
         std::cout << "| parameter | type | default | range | live | description |\n"
                   << "|---|---|---|---|---|---|\n";
         for (const graph::ParamSpec& p : info->params) {
-          std::cout << "| `" << p.name << "` | " << param_type_name(p) << " | " << default_text(p)
-                    << " | " << range_text(p) << " | " << (p.live ? "yes" : "rebuild") << " | "
-                    << p.doc << " |\n";
+          std::cout << "| `" << p.name << "` | " << graph::param_type_name(p.type) << " | "
+                    << default_text(p) << " | " << range_text(p) << " | "
+                    << (p.live ? "yes" : "rebuild") << " | " << p.doc << " |\n";
         }
         std::cout << "\n";
       }
@@ -95,7 +81,8 @@ int passes_command(const std::vector<std::string>& argv) {
               << "  inputs:  " << slots_text(info->inputs) << "\n"
               << "  outputs: " << slots_text(info->outputs) << "\n";
     for (const graph::ParamSpec& p : info->params) {
-      std::cout << "  " << p.name << " (" << param_type_name(p) << ", default " << default_text(p);
+      std::cout << "  " << p.name << " (" << graph::param_type_name(p.type) << ", default "
+                << default_text(p);
       if (const std::string range = range_text(p); !range.empty()) std::cout << ", " << range;
       std::cout << (p.live ? "" : ", rebuilds") << "): " << p.doc << "\n";
     }

@@ -10,13 +10,13 @@
 
 #include "apps/voxgi/cli_args.hpp"
 #include "apps/voxgi/commands.hpp"
-#include "apps/voxgi/scene_source.hpp"
 #include "apps/voxgi/timings_report.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/dump.hpp"
 #include "engine/graph/executor.hpp"
 #include "engine/image/image.hpp"
+#include "engine/runtime/scene_source.hpp"
 #include "engine/scene/gpu_scene.hpp"
 
 namespace voxgi::cli {
@@ -97,9 +97,9 @@ int render_command(const std::vector<std::string>& argv) {
   check_writable_folder(stem, "--out");
   if (timings_path) check_writable_folder(*timings_path, "--timings");
 
-  const graph::GraphDesc desc =
-      graph::load_graph_file(resolve_graph_path(args.value_or("graph", "graphs/default.json")));
-  scene::Scene scene = load_scene(args.value_or("scene", "cornell"));
+  const graph::GraphDesc desc = graph::load_graph_file(
+      runtime::resolve_graph_path(args.value_or("graph", "graphs/default.json")));
+  scene::Scene scene = runtime::load_scene(args.value_or("scene", "cornell"));
   // The loader's warnings name only the field; the scene file completes the location.
   for (const std::string& warning : scene.warnings)
     std::cerr << "voxgi: warning: " << scene.source << ": " << warning << "\n";

@@ -4,24 +4,19 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "engine/runtime/output_files.hpp"
+#include "engine/runtime/timings.hpp"
+
 namespace voxgi::cli {
-namespace {
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-}  // namespace
+using runtime::median;
 
 void TimingsReport::add_frame(const std::vector<graph::Executor::PassTiming>& frame) {
+  if (frames_seen_ == 0) first_frame_ = frame;
   if (frames_seen_++ < warmup_frames_) return;
   frames_.push_back(frame);
 }
@@ -88,23 +83,16 @@ void TimingsReport::write_json(const std::filesystem::path& path, const std::str
     total_cpu += s.cpu_ms_median;
   }
   doc["passes"] = passes;
+  // One-off work (static voxelization, pipeline compilation) shows only in the first frame.
+  nlohmann::json first = nlohmann::json::array();
+  for (const graph::Executor::PassTiming& t : first_frame_) {
+    first.push_back({{"pass", t.pass}, {"gpu_ms", t.gpu_ms}, {"skip_reason", t.skipped}});
+  }
+  doc["first_frame"] = first;
   doc["total_gpu_ms"] = total_gpu;
   doc["total_cpu_ms"] = total_cpu;
 
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-  const std::filesystem::path temp = path.string() + ".tmp";
-  {
-    std::ofstream out(temp);
-    if (!out) throw std::runtime_error(path.string() + ": cannot open for writing");
-    out << doc.dump(2) << "\n";
-    if (!out) throw std::runtime_error(path.string() + ": write failed");
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) {
-    std::filesystem::remove(temp, ec);
-    throw std::runtime_error(path.string() + ": cannot write: " + ec.message());
-  }
+  runtime::write_file_atomically(path, doc.dump(2) + "\n");
 }
 
 std::string TimingsReport::table() const {

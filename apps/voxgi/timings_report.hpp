@@ -35,6 +35,7 @@ class TimingsReport {
   uint32_t warmup_frames_;
   uint32_t frames_seen_ = 0;
   std::vector<std::vector<graph::Executor::PassTiming>> frames_;
+  std::vector<graph::Executor::PassTiming> first_frame_;  // measured or not
 };
 
 }  // namespace voxgi::cli

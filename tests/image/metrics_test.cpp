@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/image/error_map.hpp"
 #include "engine/image/metrics.hpp"
 
 namespace voxgi::image {
@@ -99,6 +100,61 @@ TEST(ImageMetrics, NonFinitePixelsAreCountedNotAveraged) {
 TEST(ImageMetrics, MismatchedSizesAreRejected) {
   EXPECT_THROW(compare_images(filled(2, 2, 0, 0, 0), filled(2, 3, 0, 0, 0)), std::invalid_argument);
   EXPECT_THROW(compare_images(ImageRGBA32F(), ImageRGBA32F()), std::invalid_argument);
+}
+
+TEST(ImageMetrics, RmseOfAConstantOffsetIsTheOffset) {
+  // Every channel off by 0.25: RMSE 0.25, relMSE 0.0625 / (0.5^2 + 0.01) = 0.240385.
+  const ImageMetrics m =
+      compare_images(filled(5, 3, 0.75f, 0.75f, 0.75f), filled(5, 3, 0.5f, 0.5f, 0.5f));
+  EXPECT_NEAR(m.rmse, 0.25, 1e-7);
+  EXPECT_NEAR(m.rel_mse, 0.0625 / 0.26, 1e-7);
+  EXPECT_EQ(m.compared_pixels, 15u);
+}
+
+TEST(ErrorMap, PerPixelErrorIsTheRelMseTerm) {
+  ImageRGBA32F reference = filled(2, 1, 1, 1, 1), image = filled(2, 1, 1, 1, 1);
+  image.at(0, 0)[0] = 1.5f;  // (0.25 / 1.01) / 3 at pixel 0, nothing at pixel 1
+  const std::vector<double> errors = relative_error_per_pixel(image, reference);
+  ASSERT_EQ(errors.size(), 2u);
+  EXPECT_NEAR(errors[0], 0.25 / 1.01 / 3.0, 1e-9);
+  EXPECT_DOUBLE_EQ(errors[1], 0.0);
+  // relMSE is their mean.
+  EXPECT_NEAR(compare_images(image, reference).rel_mse, (errors[0] + errors[1]) / 2.0, 1e-12);
+}
+
+TEST(ErrorMap, HeatMapRampEndsAndNonFinitePixels) {
+  ImageRGBA32F reference = filled(3, 1, 1, 1, 1), image = filled(3, 1, 1, 1, 1);
+  for (int c = 0; c < 3; ++c) image.at(1, 0)[c] = 10.0f;  // error 81 / 1.01, above `high`
+  image.at(2, 0)[1] = std::numeric_limits<float>::quiet_NaN();
+  const ImageRGBA32F map = relative_error_heat_map(image, reference, {1e-4, 1.0});
+  float cold[3], hot[3];
+  heat_map_colour(0.0, cold);
+  heat_map_colour(1.0, hot);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_FLOAT_EQ(map.at(0, 0)[c], cold[c]) << "no error is the coldest colour";
+    EXPECT_FLOAT_EQ(map.at(1, 0)[c], hot[c]) << "errors above the scale clamp to the hottest";
+  }
+  EXPECT_FLOAT_EQ(map.at(2, 0)[0], 1.0f);
+  EXPECT_FLOAT_EQ(map.at(2, 0)[1], 0.0f);
+  EXPECT_FLOAT_EQ(map.at(2, 0)[2], 1.0f) << "a NaN pixel is magenta";
+}
+
+TEST(ErrorMap, HeatMapGetsBrighterWithTheError) {
+  double previous = -1.0;
+  for (int i = 0; i <= 20; ++i) {
+    float rgb[3];
+    heat_map_colour(i / 20.0, rgb);
+    const double brightness = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+    EXPECT_GT(brightness, previous) << "at t = " << i / 20.0;
+    previous = brightness;
+  }
+}
+
+TEST(ErrorMap, BadInputIsRejected) {
+  EXPECT_THROW(relative_error_per_pixel(filled(2, 2, 0, 0, 0), filled(3, 2, 0, 0, 0)),
+               std::invalid_argument);
+  EXPECT_THROW(relative_error_heat_map(filled(2, 2, 0, 0, 0), filled(2, 2, 0, 0, 0), {1.0, 0.5}),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -1,0 +1,135 @@
+// `voxgi bench` with bad bench files and arguments: one clear message naming the file, line,
+// column and field, a non-zero exit, and no rendering (the checks run before a device opens).
+// Also `voxgi bench bvh`, which needs no device either.
+
+#include "tests/apps/voxgi_cli_fixture.hpp"
+
+namespace voxgi::test {
+namespace {
+
+class VoxgiBenchErrors : public VoxgiCli {
+ protected:
+  // Writes `text` as bad.json in the test folder and runs `voxgi bench bad.json`.
+  ProcessResult bench_text(const std::string& text, std::vector<std::string> extra = {}) {
+    write_text(dir_ / "bad.json", text);
+    std::vector<std::string> args = {"bench", "bad.json", "--out", "out"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return voxgi(args);
+  }
+  std::string where(const std::string& text, const std::string& part) {
+    return "bad.json:" + std::to_string(line_of(text, part)) + ":";
+  }
+};
+
+constexpr const char* kReference =
+    R"("reference": { "graph": "graphs/default.json", "frames": 2 })";
+
+TEST_F(VoxgiBenchErrors, WrongCommandLines) {
+  EXPECT_TRUE(exited_with(voxgi({"bench"}), 2));
+  const ProcessResult missing = voxgi({"bench", "missing.json"});
+  EXPECT_TRUE(exited_with(missing, 1));
+  EXPECT_TRUE(stderr_has(missing, {"missing.json: error: cannot read the bench file"}));
+  const ProcessResult shard = bench_text(std::string(R"({ "scenes": ["cornell"],
+    "graphs": ["graphs/default.json"], )") + kReference +
+                                             "}",
+                                         {"--shard", "3/2"});
+  EXPECT_TRUE(exited_with(shard, 2));
+  EXPECT_TRUE(stderr_has(shard, {"--shard '3/2': expected i/n with 1 <= i <= n"}));
+  const ProcessResult option = voxgi({"bench", "x.json", "--sahrd", "1/2"});
+  EXPECT_TRUE(exited_with(option, 2));
+  EXPECT_TRUE(stderr_has(option, {"unknown option '--sahrd'", "did you mean '--shard'"}));
+  const ProcessResult typo = voxgi({"bench", "mrege", "out", "shard1"});
+  EXPECT_TRUE(exited_with(typo, 2));
+  EXPECT_TRUE(stderr_has(typo, {"no bench file 'mrege' (did you mean 'voxgi bench merge'?)"}));
+  EXPECT_TRUE(exited_with(voxgi({"bench", "merge", "out"}), 2));
+  const ProcessResult merge = voxgi({"bench", "merge", "out", "no-such-shard"});
+  EXPECT_TRUE(exited_with(merge, 1));
+  EXPECT_TRUE(stderr_has(merge, {"no-such-shard/results.json: cannot read"}));
+  std::filesystem::create_directories(dir_ / "broken");
+  write_text(dir_ / "broken" / "results.json", "{ not json");
+  const ProcessResult broken = voxgi({"bench", "merge", "out", "broken"});
+  EXPECT_TRUE(exited_with(broken, 1));
+  EXPECT_TRUE(stderr_has(broken, {"broken/results.json: not valid JSON"}));
+}
+
+TEST_F(VoxgiBenchErrors, BadBenchFilesNameTheSpot) {
+  const std::string syntax = "{\n  \"scenes\": [\"cornell\"]\n  \"graphs\": []\n}\n";
+  ProcessResult r = bench_text(syntax);
+  EXPECT_TRUE(exited_with(r, 1));
+  EXPECT_TRUE(stderr_has(r, {"bad.json:3:", "error:"}));
+
+  const std::string unknown = std::string("{\n  \"scenes\": [\"cornell\"],\n") +
+                              "  \"graphs\": [\"graphs/default.json\"],\n  \"frmaes\": 2,\n  " +
+                              kReference + "\n}\n";
+  r = bench_text(unknown);
+  EXPECT_TRUE(exited_with(r, 1));
+  EXPECT_TRUE(stderr_has(r, {where(unknown, "\"frmaes\"") + "3: error: field 'frmaes': unknown",
+                             "did you mean 'frames'"}));
+  EXPECT_FALSE(contains(r.err, "voxgi: device:")) << "no device is opened for a bad bench file";
+}
+
+TEST_F(VoxgiBenchErrors, UnknownSweptParametersAndCamerasAreFoundBeforeRendering) {
+  const std::string sweep = std::string("{\n  \"scenes\": [\"cornell\"],\n  \"graphs\": [\n") +
+                            "    { \"graph\": \"graphs/default.json\",\n" +
+                            "      \"sweep\": { \"ambient.radiancee\": [0.1, 0.2] } }\n  ],\n  " +
+                            kReference + "\n}\n";
+  ProcessResult r = bench_text(sweep);
+  EXPECT_TRUE(exited_with(r, 1));
+  EXPECT_TRUE(stderr_has(
+      r, {where(sweep, "{ \"graph\"") + "5: error: field 'graphs[0]'", "configuration c000",
+          "ambient.radiancee", "did you mean 'ambient.radiance'"}));
+  EXPECT_FALSE(contains(r.err, "voxgi: device:"));
+
+  const std::string camera = std::string("{\n  \"scenes\": [\n") +
+                             "    { \"scene\": \"cornell\", \"cameras\": [\"nope\"] }\n  ],\n" +
+                             "  \"graphs\": [\"graphs/default.json\"],\n  " + kReference + "\n}\n";
+  r = bench_text(camera);
+  EXPECT_TRUE(exited_with(r, 1));
+  EXPECT_TRUE(stderr_has(r, {where(camera, "{ \"scene\"") + "5: error: field 'scenes[0].cameras'",
+                             "has no camera 'nope'"}));
+
+  const std::string reference = std::string("{\n  \"scenes\": [\"cornell\"],\n") +
+                                "  \"graphs\": [\"graphs/default.json\"],\n" +
+                                "  \"reference\": { \"graph\": \"graphs/default.json\", " +
+                                "\"frames\": 2,\n    \"set\": { \"nope.param\": 1 } }\n}\n";
+  r = bench_text(reference);
+  EXPECT_TRUE(exited_with(r, 1));
+  EXPECT_TRUE(stderr_has(
+      r, {where(reference, "\"reference\"") + "16: error: field 'reference'", "nope.param"}));
+}
+
+TEST_F(VoxgiBenchErrors, CheckListsTheConfigurationsAndRendersNothing) {
+  write_text(dir_ / "two.json", std::string(R"({ "scenes": ["cornell"], "resolution": [32, 32],
+    "graphs": [{ "graph": "graphs/default.json", "sweep": { "ambient.radiance": [0.1, 0.2] } }],
+    )") + kReference + "}");
+  const ProcessResult r = voxgi({"bench", "two.json", "--check", "--out", "never"});
+  ASSERT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(stdout_has(r, {"two.json: 2 of 2 configurations",
+                             "c000  default ambient.radiance=0.1  on cornell / default / 32x32",
+                             "c001  default ambient.radiance=0.2"}));
+  EXPECT_FALSE(contains(r.err, "voxgi: device:"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "never"));
+}
+
+TEST_F(VoxgiBenchErrors, TheShippedBenchChecksOut) {
+  if (!std::filesystem::exists(std::filesystem::path(VOXGI_SHARED_DIR) / "scenes")) {
+    GTEST_SKIP() << "graphs/bench.json uses scenes from " << VOXGI_SHARED_DIR
+                 << "/scenes, which is absent";
+  }
+  const ProcessResult r = voxgi({"bench", "graphs/bench.json", "--check", "--shard", "2/3"});
+  ASSERT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(
+      stdout_has(r, {"bench.json: ", "(shard 2/3)", "ambient", "sponza-dabrovic / atrium"}));
+}
+
+TEST_F(VoxgiBenchErrors, BvhStatisticsOfABuiltInScene) {
+  const ProcessResult r = voxgi({"bench", "bvh", "--scene", "cornell", "--repeat", "3"});
+  ASSERT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(stdout_has(r, {"triangles", "SAH cost", "build ms", "median of 3"}));
+  const ProcessResult bad = voxgi({"bench", "bvh", "--scene", "nope.glb"});
+  EXPECT_TRUE(exited_with(bad, 1));
+  EXPECT_TRUE(stderr_has(bad, {"nope.glb"}));
+}
+
+}  // namespace
+}  // namespace voxgi::test

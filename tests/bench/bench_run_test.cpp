@@ -1,0 +1,223 @@
+// `voxgi bench` end to end on the Vulkan device with a tiny bench (one scene, two
+// configurations, 64x64, a few frames): every output file, the report agreeing with
+// results.json, the reference cache, and shards + merge against an unsharded run.
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "tests/apps/voxgi_cli_fixture.hpp"
+
+namespace voxgi::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// The reference path tracer's graph when it is in the tree, else the default graph with a
+// brighter ambient term, so that the two configurations have a non-zero error either way.
+std::string reference_entry() {
+  if (fs::exists(fs::path(VOXGI_SOURCE_DIR) / "graphs" / "reference.json")) {
+    return R"("reference": { "graph": "graphs/reference.json", "frames": 4 })";
+  }
+  return R"("reference": { "graph": "graphs/default.json", "frames": 2,
+                           "set": { "ambient.radiance": 0.08 } })";
+}
+
+std::string tiny_bench() {
+  return R"({
+  "name": "tiny",
+  "scenes": ["cornell"],
+  "resolution": [64, 64],
+  "warmup_frames": 1,
+  "frames": 3,
+  "graphs": [
+    { "graph": "graphs/default.json", "label": "ambient",
+      "sweep": { "ambient.radiance": [0.02, 0.05] } }
+  ],
+  )" + reference_entry() +
+         "\n}\n";
+}
+
+json read_json(const fs::path& path) {
+  return json::parse(read_text(path));
+}
+
+std::vector<std::string> split_cells(const std::string& row) {
+  std::vector<std::string> cells;
+  std::string cell;
+  for (size_t i = 1; i < row.size(); ++i) {
+    if (row[i] == '|') {
+      const size_t a = cell.find_first_not_of(' '), b = cell.find_last_not_of(' ');
+      cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
+      cell.clear();
+    } else {
+      cell += row[i];
+    }
+  }
+  return cells;
+}
+
+// The report shows 4 significant digits.
+::testing::AssertionResult same_number(const std::string& shown, double value) {
+  const double parsed = std::stod(shown);
+  if (std::fabs(parsed - value) <= 5e-4 * std::fabs(value) + 1e-12) {
+    return ::testing::AssertionSuccess();
+  }
+  return ::testing::AssertionFailure()
+         << "report shows " << shown << ", results.json has " << value;
+}
+
+class VoxgiBench : public VoxgiCli {
+ protected:
+  void SetUp() override {
+    VoxgiCli::SetUp();
+    write_text(dir_ / "tiny.json", tiny_bench());
+  }
+  ProcessResult bench(const std::string& out, std::vector<std::string> extra = {}) {
+    std::vector<std::string> args = {"bench", "tiny.json",   "--out", out, "--reference-cache",
+                                     "cache", "--validation"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    ProcessOptions options;
+    options.timeout = std::chrono::milliseconds(120000);
+    return voxgi(args, options);
+  }
+};
+
+TEST_F(VoxgiBench, TinyBenchWritesEveryOutputAndTheReportAgreesWithResults) {
+  const ProcessResult r = bench("out");
+  ASSERT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(stderr_has(r, {"voxgi: device: ", "2 of 2 configurations",
+                             "reference for cornell / default / 64x64: not cached, rendering",
+                             "[1/2] c000 ambient ambient.radiance=0.02", "[2/2] c001",
+                             "voxgi: wrote out/results.json"}));
+  for (const char* file :
+       {"results.json", "results.csv", "report.md", "charts/heat-scale.svg",
+        "charts/group0-error-vs-time.svg", "charts/group0-pass-times.svg", "images/c000.png",
+        "images/c000-error.png", "images/c001.png", "images/c001-error.png"}) {
+    EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / file)) << file;
+  }
+  const json results = read_json(dir_ / "out" / "results.json");
+  ASSERT_EQ(results["results"].size(), 2u);
+  EXPECT_EQ(results["configurations_total"], 2);
+  EXPECT_TRUE(results["missing"].empty());
+  const std::string report = read_text(dir_ / "out" / "report.md");
+  const std::string csv = read_text(dir_ / "out" / "results.csv");
+  for (const json& item : results["results"]) {
+    const std::string id = item["id"];
+    SCOPED_TRACE(id);
+    EXPECT_EQ(item["reference_cache_hit"], false);
+    EXPECT_TRUE(fs::is_regular_file(dir_ / "out" / item["images"]["reference"].get<std::string>()));
+    const json& full = item["metrics"]["full"];
+    ASSERT_TRUE(full.is_object());
+    EXPECT_GT(full["rel_mse"].get<double>(), 0.0) << "the reference differs from both";
+    EXPECT_GT(full["ssim_luminance"].get<double>(), 0.0);
+    EXPECT_LE(full["ssim_luminance"].get<double>(), 1.0);
+    EXPECT_EQ(full["non_finite_pixels"], 0);
+    EXPECT_EQ(full["compared_pixels"], 64 * 64);
+    ASSERT_TRUE(item["metrics"]["indirect"].is_object()) << "both graphs have `indirect`";
+    EXPECT_GT(item["gpu_ms"]["median"].get<double>(), 0.0) << "timestamps were read";
+    EXPECT_LE(item["gpu_ms"]["p10"].get<double>(), item["gpu_ms"]["median"].get<double>());
+    EXPECT_LE(item["gpu_ms"]["median"].get<double>(), item["gpu_ms"]["p90"].get<double>());
+    EXPECT_FALSE(item["passes"].empty());
+
+    // The report's table row for this configuration shows results.json's numbers.
+    const size_t at = report.find("| " + id + " |");
+    ASSERT_NE(at, std::string::npos) << report;
+    const std::vector<std::string> cells =
+        split_cells(report.substr(at, report.find('\n', at) - at));
+    // id | technique | settings | GPU ms | p10–p90 | relMSE | RMSE | SSIM | bias | indirect | nf
+    ASSERT_EQ(cells.size(), 11u) << report.substr(at, 200);
+    EXPECT_EQ(cells[1], "ambient");
+    EXPECT_NE(cells[2].find("ambient.radiance=" +
+                            item["overrides"]["ambient.radiance"].get<std::string>()),
+              std::string::npos);
+    EXPECT_TRUE(same_number(cells[3], item["gpu_ms"]["median"]));
+    const size_t dash = cells[4].find("–");
+    ASSERT_NE(dash, std::string::npos);
+    EXPECT_TRUE(same_number(cells[4].substr(0, dash), item["gpu_ms"]["p10"]));
+    EXPECT_TRUE(
+        same_number(cells[4].substr(dash + std::string("–").size()), item["gpu_ms"]["p90"]));
+    EXPECT_TRUE(same_number(cells[5], full["rel_mse"]));
+    EXPECT_TRUE(same_number(cells[6], full["rmse"]));
+    EXPECT_TRUE(same_number(cells[7], full["ssim_luminance"]));
+    EXPECT_TRUE(same_number(cells[8], full["luminance_bias"]));
+    EXPECT_TRUE(same_number(cells[9], item["metrics"]["indirect"]["rel_mse"]));
+    EXPECT_EQ(cells[10], "0");
+    EXPECT_NE(report.find("src=\"" + item["images"]["heat_map"].get<std::string>() + "\""),
+              std::string::npos);
+    std::ostringstream csv_row;
+    csv_row << "\n" << item["index"].get<int>() << "," << id << ",";
+    EXPECT_NE(csv.find(csv_row.str()), std::string::npos);
+  }
+  // A brighter ambient term is closer to the reference's brighter one.
+  EXPECT_LT(results["results"][1]["metrics"]["full"]["rel_mse"].get<double>(),
+            results["results"][0]["metrics"]["full"]["rel_mse"].get<double>());
+}
+
+TEST_F(VoxgiBench, ASecondRunHitsTheReferenceCache) {
+  ASSERT_TRUE(exited_with(bench("first"), 0));
+  const ProcessResult second = bench("second");
+  ASSERT_TRUE(exited_with(second, 0));
+  EXPECT_TRUE(stderr_has(second, {"reference for cornell / default / 64x64: cache hit"}));
+  EXPECT_FALSE(contains(second.err, "not cached")) << second.describe();
+  const json first = read_json(dir_ / "first" / "results.json");
+  const json again = read_json(dir_ / "second" / "results.json");
+  ASSERT_EQ(again["results"].size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(again["results"][i]["reference_cache_hit"], true);
+    EXPECT_EQ(again["results"][i]["reference_key"], first["results"][i]["reference_key"]);
+    // The cache stores 32-bit floats: the comparison is the same as with the fresh reference.
+    EXPECT_NEAR(again["results"][i]["metrics"]["full"]["rel_mse"].get<double>(),
+                first["results"][i]["metrics"]["full"]["rel_mse"].get<double>(),
+                1e-9 + 1e-6 * first["results"][i]["metrics"]["full"]["rel_mse"].get<double>());
+  }
+}
+
+TEST_F(VoxgiBench, ShardsAndMergeEqualTheUnshardedRun) {
+  ASSERT_TRUE(exited_with(bench("all"), 0));
+  const ProcessResult one = bench("shard1", {"--shard", "1/2"});
+  ASSERT_TRUE(exited_with(one, 0));
+  EXPECT_TRUE(stderr_has(one, {"1 of 2 configurations (shard 1/2)"}));
+  ASSERT_TRUE(exited_with(bench("shard2", {"--shard", "2/2"}), 0));
+  const ProcessResult merge = voxgi({"bench", "merge", "merged", "shard2", "shard1"});
+  ASSERT_TRUE(exited_with(merge, 0));
+  EXPECT_TRUE(stderr_has(merge, {"2 of 2 configurations from 2 shard folder(s)"}));
+  EXPECT_FALSE(contains(merge.err, "warning")) << merge.describe();
+
+  const json all = read_json(dir_ / "all" / "results.json");
+  const json merged = read_json(dir_ / "merged" / "results.json");
+  auto configurations = [](const json& doc) {
+    std::set<std::string> set;
+    for (const json& item : doc["results"]) {
+      set.insert(item["id"].get<std::string>() + " " + item["label"].get<std::string>() + " " +
+                 item["overrides"].dump() + " " + item["reference_key"].get<std::string>());
+    }
+    return set;
+  };
+  EXPECT_EQ(configurations(merged), configurations(all));
+  EXPECT_EQ(merged["configurations_total"], 2);
+  EXPECT_TRUE(merged["missing"].empty());
+  EXPECT_EQ(merged["shards"], json::array({"2/2", "1/2"}));
+  EXPECT_EQ(merged["results"][0]["id"], "c000") << "merged results are in configuration order";
+  for (const json& item : merged["results"]) {
+    for (const char* image : {"image", "reference", "heat_map"}) {
+      EXPECT_TRUE(fs::is_regular_file(dir_ / "merged" / item["images"][image].get<std::string>()))
+          << image;
+    }
+  }
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "merged" / "report.md"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "merged" / "results.csv"));
+
+  // A shard of another bench is refused.
+  write_text(dir_ / "tiny.json", tiny_bench() + "// changed\n");
+  ASSERT_TRUE(exited_with(bench("other", {"--shard", "1/2"}), 0));
+  const ProcessResult mixed = voxgi({"bench", "merge", "mixed", "shard2", "other"});
+  EXPECT_TRUE(exited_with(mixed, 1));
+  EXPECT_TRUE(stderr_has(mixed, {"'other' comes from a different bench file"}));
+}
+
+}  // namespace
+}  // namespace voxgi::test

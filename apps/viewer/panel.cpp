@@ -16,20 +16,6 @@ namespace {
 
 constexpr float kPanelWidth = 440.0f;
 
-const char* type_name(graph::ParamType type) {
-  switch (type) {
-    case graph::ParamType::Bool:
-      return "bool";
-    case graph::ParamType::Int:
-      return "int";
-    case graph::ParamType::Float:
-      return "float";
-    case graph::ParamType::Enum:
-      return "enum";
-  }
-  return "?";
-}
-
 }  // namespace
 
 bool ViewerApp::header(const char* label, const char* section, bool open_by_default) {
@@ -255,10 +241,11 @@ void ViewerApp::draw_params_panel(size_t slot) {
       }
       if (ImGui::IsItemHovered()) {
         if (spec.type == graph::ParamType::Int || spec.type == graph::ParamType::Float) {
-          ImGui::SetTooltip("%s\n%s in [%g, %g]%s", spec.doc.c_str(), type_name(spec.type),
-                            spec.min, spec.max, spec.live ? "" : "\n* re-runs the pass's setup");
+          ImGui::SetTooltip("%s\n%s in [%g, %g]%s", spec.doc.c_str(),
+                            graph::param_type_name(spec.type), spec.min, spec.max,
+                            spec.live ? "" : "\n* re-runs the pass's setup");
         } else {
-          ImGui::SetTooltip("%s\n%s%s", spec.doc.c_str(), type_name(spec.type),
+          ImGui::SetTooltip("%s\n%s%s", spec.doc.c_str(), graph::param_type_name(spec.type),
                             spec.live ? "" : "\n* re-runs the pass's setup");
         }
       }

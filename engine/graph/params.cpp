@@ -28,6 +28,20 @@ std::string range_text(const ParamSpec& spec) {
 
 }  // namespace
 
+const char* param_type_name(ParamType type) {
+  switch (type) {
+    case ParamType::Bool:
+      return "bool";
+    case ParamType::Int:
+      return "int";
+    case ParamType::Float:
+      return "float";
+    case ParamType::Enum:
+      return "enum";
+  }
+  return "?";
+}
+
 ParamValue parse_param_value(const ParamSpec& spec, const std::string& key,
                              const std::string& text) {
   ParamValue value;

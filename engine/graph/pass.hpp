@@ -36,6 +36,8 @@ namespace voxgi::graph {
 inline constexpr uint32_t kPluginAbiVersion = 1;
 
 enum class ParamType { Bool, Int, Float, Enum };
+// "bool", "int", "float" or "enum".
+const char* param_type_name(ParamType type);
 
 struct ParamSpec {
   std::string name;

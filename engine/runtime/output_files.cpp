@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <stdexcept>
 
 #include "engine/runtime/graph_instance.hpp"
@@ -9,6 +10,23 @@
 namespace voxgi::runtime {
 
 namespace fs = std::filesystem;
+
+void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  const std::filesystem::path temp = path.string() + ".tmp";
+  {
+    std::ofstream out(temp, std::ios::binary);
+    if (!out) throw std::runtime_error(path.string() + ": cannot open for writing");
+    out << text;
+    if (!out) throw std::runtime_error(path.string() + ": write failed");
+  }
+  std::error_code ec;
+  std::filesystem::rename(temp, path, ec);
+  if (ec) {
+    std::filesystem::remove(temp, ec);
+    throw std::runtime_error(path.string() + ": cannot write: " + ec.message());
+  }
+}
 
 std::vector<fs::path> write_outputs(GraphInstance& graph, const fs::path& stem) {
   if (stem.has_parent_path()) {

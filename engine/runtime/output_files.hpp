@@ -19,6 +19,10 @@ class GraphInstance;
 std::vector<std::filesystem::path> write_outputs(GraphInstance& graph,
                                                  const std::filesystem::path& stem);
 
+// Writes `text` to `path` through a temporary file next to it and a rename, creating the
+// folder. Throws std::runtime_error naming the path.
+void write_file_atomically(const std::filesystem::path& path, const std::string& text);
+
 // |a - b| per channel times `gain`, alpha 1. Throws std::invalid_argument when sizes differ.
 image::ImageRGBA32F difference(const image::ImageRGBA32F& a, const image::ImageRGBA32F& b,
                                float gain = 1.0f);

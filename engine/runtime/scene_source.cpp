@@ -40,14 +40,16 @@ std::filesystem::path resolve_graph_path(const std::string& arg) {
   return std::filesystem::exists(in_source) ? in_source : path;
 }
 
+OverrideError::OverrideError(const std::string& bad_setting)
+    : std::invalid_argument("set '" + bad_setting +
+                            "': expected KEY=VALUE, e.g. lighting.pcf_radius=2"),
+      setting(bad_setting) {}
+
 std::map<std::string, std::string> parse_overrides(const std::vector<std::string>& settings) {
   std::map<std::string, std::string> overrides;
   for (const std::string& setting : settings) {
     const size_t eq = setting.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw std::invalid_argument("set '" + setting +
-                                  "': expected KEY=VALUE, e.g. lighting.pcf_radius=2");
-    }
+    if (eq == std::string::npos || eq == 0) throw OverrideError(setting);
     overrides[setting.substr(0, eq)] = setting.substr(eq + 1);
   }
   return overrides;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,14 @@ std::filesystem::path resolve_graph_path(const std::string& arg);
 // The source tree's root as built (graphs/, shaders/ live there).
 std::filesystem::path repo_dir();
 
-// "key=value" strings → overrides. Throws std::invalid_argument naming the bad string.
+// A "key=value" string without '=' or with an empty key; `setting` is the string as given.
+class OverrideError : public std::invalid_argument {
+ public:
+  explicit OverrideError(const std::string& bad_setting);
+  std::string setting;
+};
+
+// "key=value" strings → overrides. Throws OverrideError naming the bad string.
 std::map<std::string, std::string> parse_overrides(const std::vector<std::string>& settings);
 
 }  // namespace voxgi::runtime

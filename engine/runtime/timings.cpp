@@ -3,22 +3,28 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 namespace voxgi::runtime {
-namespace {
+
+double percentile(const std::vector<double>& sorted, double p) {
+  const double at = p * static_cast<double>(sorted.size() - 1);
+  const size_t below = static_cast<size_t>(std::floor(at));
+  const size_t above = std::min(below + 1, sorted.size() - 1);
+  const double f = at - static_cast<double>(below);
+  if (f == 0.0) return sorted[below];
+  return sorted[below] * (1.0 - f) + sorted[above] * f;
+}
 
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+  return percentile(values, 0.5);
 }
-
-}  // namespace
 
 void TimingsHistory::add_frame(const std::vector<graph::Executor::PassTiming>& frame,
                                double frame_ms) {

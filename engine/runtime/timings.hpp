@@ -13,6 +13,12 @@
 
 namespace voxgi::runtime {
 
+// The value at fraction `p` (0..1) of `sorted` (ascending, not empty), interpolating linearly
+// between the two nearest ranks: p = 0.5 is the median, 0.1 the 10th percentile.
+double percentile(const std::vector<double>& sorted, double p);
+// The median of `values` (the mean of the middle two for an even count); 0 for none.
+double median(std::vector<double> values);
+
 struct PassTimingSummary {
   std::string pass, type;
   double gpu_ms_median = 0.0;

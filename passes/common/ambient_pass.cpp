@@ -27,12 +27,12 @@ struct AmbientPush {
 class AmbientPass final : public graph::Pass {
  public:
   void setup(graph::PassContext& ctx) override {
-    pipeline_.emplace(make_common_compute(ctx, "ambient.comp",
-                                          {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
-                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
-                                           {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
-                                           {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0}},
-                                          sizeof(AmbientPush), false));
+    pipeline_.emplace(graph::make_pass_compute(ctx, "common/ambient.comp",
+                                               {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+                                                {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+                                                {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0}},
+                                               sizeof(AmbientPush), false));
   }
 
   void execute(graph::PassContext& ctx) override {

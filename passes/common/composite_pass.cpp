@@ -43,8 +43,8 @@ class CompositePass final : public graph::Pass {
     const bool indirect_out = ctx.has("indirect");
     if (indirect_out) bindings.push_back({5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
     defines.push_back({"HAS_INDIRECT_OUT", indirect_out ? "1" : "0"});
-    pipeline_.emplace(make_common_compute(ctx, "composite.comp", bindings, sizeof(CompositePush),
-                                          false, defines));
+    pipeline_.emplace(graph::make_pass_compute(ctx, "common/composite.comp", bindings,
+                                               sizeof(CompositePush), false, defines));
   }
 
   void execute(graph::PassContext& ctx) override {

@@ -49,9 +49,9 @@ class DeferredLightingPass final : public graph::Pass {
       bindings.push_back({6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
       bindings.push_back({7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0});
     }
-    pipeline_.emplace(make_common_compute(ctx, "deferred_lighting.comp", bindings,
-                                          sizeof(LightingPush), true,
-                                          {{"HAS_SHADOWS", has_shadows_ ? "1" : "0"}}));
+    pipeline_.emplace(graph::make_pass_compute(ctx, "common/deferred_lighting.comp", bindings,
+                                               sizeof(LightingPush), true,
+                                               {{"HAS_SHADOWS", has_shadows_ ? "1" : "0"}}));
   }
 
   void execute(graph::PassContext& ctx) override {
@@ -78,18 +78,12 @@ class DeferredLightingPass final : public graph::Pass {
                       static_cast<float>(ctx.number("background")),
                       0.0f};
     if (has_shadows_) {
-      const graph::BoundResource& maps = ctx.resource("shadow_maps");
-      const graph::BoundResource& matrices = ctx.resource("shadow_matrices");
-      writer.sampled_image(6, maps.view, maps.layout, gpu.sampler(gpu::SamplerKind::ShadowCompare));
-      writer.storage_buffer(7, *matrices.buffer);
-      push.shadow_slots = std::min<uint32_t>(
-          maps.info->array_layers / kShadowFacesPerLight,
-          static_cast<uint32_t>(matrices.info->buffer_size / sizeof(ShadowLight)));
+      push.shadow_slots = graph::write_shadow_inputs(ctx, writer, 6, 7);
       push.shadows_enabled = ctx.flag("shadows") ? 1u : 0u;
     }
     pipeline_->bind(cmd);
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
-    bind_scene_set(ctx, *pipeline_);
+    graph::bind_scene_set(ctx, *pipeline_);
     pipeline_->push_constants(cmd, push);
     dispatch_over_image(cmd, extent.width, extent.height);
   }

@@ -57,11 +57,11 @@ class DisplayTransformPass final : public graph::Pass {
     lut_image_->upload(texels.data(), texels.size() * sizeof(uint16_t),
                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 
-    pipeline_.emplace(make_common_compute(ctx, "display_transform.comp",
-                                          {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
-                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
-                                           {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0}},
-                                          sizeof(DisplayPush), false));
+    pipeline_.emplace(graph::make_pass_compute(ctx, "common/display_transform.comp",
+                                               {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+                                                {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
+                                                {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0}},
+                                               sizeof(DisplayPush), false));
   }
 
   void execute(graph::PassContext& ctx) override {

@@ -27,8 +27,8 @@ class GbufferPass final : public graph::Pass {
   void setup(graph::PassContext& ctx) override {
     gpu::GraphicsPipelineDesc desc;
     desc.name = ctx.pass_name();
-    desc.vertex = compile_common_shader(ctx, "gbuffer.vert");
-    desc.fragment = compile_common_shader(ctx, "gbuffer.frag");
+    desc.vertex = graph::compile_pass_shader(ctx, "common/gbuffer.vert");
+    desc.fragment = graph::compile_pass_shader(ctx, "common/gbuffer.frag");
     desc.layout.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                              VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT}};
     desc.layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};

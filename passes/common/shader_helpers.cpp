@@ -1,36 +1,6 @@
 #include "passes/common/shader_helpers.hpp"
 
-#include "engine/scene/gpu_scene.hpp"
-
 namespace voxgi::passes::common {
-
-std::vector<uint32_t> compile_common_shader(const graph::PassContext& ctx, const std::string& file,
-                                            std::vector<gpu::ShaderDefine> defines) {
-  gpu::ShaderRequest request;
-  request.path = "common/" + file;
-  request.defines = std::move(defines);
-  return ctx.shaders().compile(request);
-}
-
-gpu::ComputePipeline make_common_compute(const graph::PassContext& ctx, const std::string& file,
-                                         std::vector<gpu::Binding> bindings,
-                                         uint32_t push_constant_size, bool with_scene_set,
-                                         std::vector<gpu::ShaderDefine> defines) {
-  gpu::PipelineLayoutDesc layout;
-  layout.bindings = std::move(bindings);
-  for (gpu::Binding& binding : layout.bindings) binding.stages = VK_SHADER_STAGE_COMPUTE_BIT;
-  if (with_scene_set) layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};
-  layout.push_constant_size = push_constant_size;
-  layout.push_constant_stages = VK_SHADER_STAGE_COMPUTE_BIT;
-  return gpu::ComputePipeline(ctx.gpu(), compile_common_shader(ctx, file, std::move(defines)),
-                              layout, ctx.pass_name());
-}
-
-void bind_scene_set(const graph::PassContext& ctx, const gpu::ComputePipeline& pipeline) {
-  VkDescriptorSet set = ctx.gpu_scene().descriptor_set();
-  vkCmdBindDescriptorSets(ctx.cmd(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 1, 1, &set,
-                          0, nullptr);
-}
 
 graph::SlotSpec sampled_input(const char* name, const char* doc, bool optional,
                               std::vector<VkFormat> formats) {

@@ -1,28 +1,14 @@
 #pragma once
-// Small helpers the family's passes share: compiling their shaders and dispatch sizes.
+// Small helpers the family's passes share: slot declarations and dispatch sizes (compiling
+// shaders and compute pipelines: engine/graph/pass_helpers.hpp).
 
 #include <string>
 #include <vector>
 
-#include "engine/gpu/pipeline.hpp"
-#include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/pass.hpp"
+#include "engine/graph/pass_helpers.hpp"
 
 namespace voxgi::passes::common {
-
-// Compiles shaders/common/<file> with the given defines.
-std::vector<uint32_t> compile_common_shader(const graph::PassContext& ctx, const std::string& file,
-                                            std::vector<gpu::ShaderDefine> defines = {});
-
-// A compute pipeline from shaders/common/<file>: set 0 holds `bindings` (push descriptors),
-// set 1 the scene's descriptor set when `with_scene_set` is true.
-gpu::ComputePipeline make_common_compute(const graph::PassContext& ctx, const std::string& file,
-                                         std::vector<gpu::Binding> bindings,
-                                         uint32_t push_constant_size, bool with_scene_set,
-                                         std::vector<gpu::ShaderDefine> defines = {});
-
-// Binds the scene's descriptor set as set 1 of a compute pipeline.
-void bind_scene_set(const graph::PassContext& ctx, const gpu::ComputePipeline& pipeline);
 
 // Slot declarations the family's compute passes share.
 // A 2D image read through a sampler in compute (any format unless `formats` is given).

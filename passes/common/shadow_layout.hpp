@@ -5,9 +5,11 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/graph/pass_helpers.hpp"
+
 namespace voxgi::passes::common {
 
-inline constexpr uint32_t kShadowFacesPerLight = 6;
+using graph::kShadowFacesPerLight;
 
 // Matrices are relative to `origin` (clip = view_proj * (p - origin)): a view matrix that
 // carries a large translation loses float precision for scenes far from the world origin.
@@ -20,6 +22,6 @@ struct ShadowLight {
   // w: unused
   glm::vec4 info;
 };
-static_assert(sizeof(ShadowLight) == 6 * 64 + 32);
+static_assert(sizeof(ShadowLight) == graph::kShadowLightBytes);
 
 }  // namespace voxgi::passes::common

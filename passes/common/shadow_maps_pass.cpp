@@ -100,7 +100,7 @@ class ShadowMapsPass final : public graph::Pass {
   void setup(graph::PassContext& ctx) override {
     gpu::GraphicsPipelineDesc desc;
     desc.name = ctx.pass_name();
-    desc.vertex = compile_common_shader(ctx, "shadow.vert");
+    desc.vertex = graph::compile_pass_shader(ctx, "common/shadow.vert");
     desc.layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};
     desc.layout.push_constant_size = sizeof(ShadowPush);
     desc.layout.push_constant_stages = VK_SHADER_STAGE_VERTEX_BIT;

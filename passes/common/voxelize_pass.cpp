@@ -140,9 +140,9 @@ class VoxelizePass final : public graph::Pass {
 
     gpu::GraphicsPipelineDesc desc;
     desc.name = ctx.pass_name();
-    desc.vertex = compile_common_shader(ctx, "voxelize.vert", defines);
-    desc.geometry = compile_common_shader(ctx, "voxelize.geom", defines);
-    desc.fragment = compile_common_shader(ctx, "voxelize.frag", defines);
+    desc.vertex = graph::compile_pass_shader(ctx, "common/voxelize.vert", defines);
+    desc.geometry = graph::compile_pass_shader(ctx, "common/voxelize.geom", defines);
+    desc.fragment = graph::compile_pass_shader(ctx, "common/voxelize.frag", defines);
     desc.layout.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}};
     desc.layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};
     desc.layout.push_constant_size = sizeof(VoxelDrawPush);
@@ -160,11 +160,12 @@ class VoxelizePass final : public graph::Pass {
                                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                                                   {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
     if (has_emission_) resolve_bindings.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-    resolve_pipeline_.emplace(make_common_compute(ctx, "voxel_resolve.comp", resolve_bindings,
-                                                  sizeof(VoxelResolvePush), false, defines));
-    clear_pipeline_.emplace(make_common_compute(ctx, "voxel_clear.comp",
-                                                {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
-                                                sizeof(VoxelClearPush), false));
+    resolve_pipeline_.emplace(graph::make_pass_compute(ctx, "common/voxel_resolve.comp",
+                                                       resolve_bindings, sizeof(VoxelResolvePush),
+                                                       false, defines));
+    clear_pipeline_.emplace(graph::make_pass_compute(ctx, "common/voxel_clear.comp",
+                                                     {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}},
+                                                     sizeof(VoxelClearPush), false));
     initialized_ = false;
     scratch_clean_ = false;
   }

@@ -1,26 +1,15 @@
 #pragma once
-// Helpers the dvs passes share: compute pipelines from shaders/dvs, slot declarations for
-// voxel clipmaps, dispatch sizes over a volume, and input-version tracking for skipping.
+// Helpers the dvs passes share: slot declarations for voxel clipmaps and dispatch sizes over a
+// volume (shaders, compute pipelines and input versions: engine/graph/pass_helpers.hpp).
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "engine/gpu/pipeline.hpp"
-#include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/pass.hpp"
+#include "engine/graph/pass_helpers.hpp"
 
 namespace voxgi::passes::dvs {
-
-// A compute pipeline from shaders/dvs/<file>: set 0 holds `bindings` (push descriptors), set 1
-// the scene's descriptor set when `with_scene_set` is true.
-gpu::ComputePipeline make_dvs_compute(const graph::PassContext& ctx, const std::string& file,
-                                      std::vector<gpu::Binding> bindings,
-                                      uint32_t push_constant_size, bool with_scene_set,
-                                      std::vector<gpu::ShaderDefine> defines = {});
-
-// Binds the scene's descriptor set as set 1 of a compute pipeline.
-void bind_scene_set(const graph::PassContext& ctx, const gpu::ComputePipeline& pipeline);
 
 // A clipmap read with texelFetch or a sampler in compute.
 graph::SlotSpec clipmap_input(const char* name, const char* doc, bool optional = false,
@@ -40,21 +29,5 @@ void dispatch_over_volume(VkCommandBuffer cmd, VkExtent3D extent);
 
 // The voxel clipmap info buffer (shaders/lib/voxel_clipmap.glsl): 16 + 16 + 8 * 32 bytes.
 inline constexpr VkDeviceSize kClipmapInfoSize = 288;
-
-// Remembers the resource versions of a pass's inputs at its last execute(), so that
-// skip_reason() can tell whether any of them has been written since.
-class InputVersions {
- public:
-  explicit InputVersions(std::vector<std::string> slots) : slots_(std::move(slots)) {}
-  // True before the first store() and whenever a bound slot's version differs from the stored.
-  bool changed(const graph::PassContext& ctx) const;
-  void store(const graph::PassContext& ctx);
-  void reset() { stored_.clear(); }
-
- private:
-  std::vector<uint64_t> current(const graph::PassContext& ctx) const;
-  std::vector<std::string> slots_;
-  std::vector<uint64_t> stored_;
-};
 
 }  // namespace voxgi::passes::dvs

@@ -70,9 +70,10 @@ class VoxelBouncePass final : public graph::Pass {
         {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
         {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0},
     };
-    pipeline_.emplace(make_dvs_compute(ctx, "voxel_bounce.comp", bindings, sizeof(BouncePush),
-                                       false, {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"}}));
-    inputs_.reset();
+    pipeline_.emplace(graph::make_pass_compute(ctx, "dvs/voxel_bounce.comp", bindings,
+                                               sizeof(BouncePush), false,
+                                               {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"}}));
+    inputs_.forget();
   }
 
   // Every bounce derives from the direct light and the voxels: while those are unchanged the
@@ -123,12 +124,12 @@ class VoxelBouncePass final : public graph::Pass {
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
     pipeline_->push_constants(cmd, push);
     dispatch_over_volume(cmd, extent);
-    inputs_.store(ctx);
+    inputs_.remember(ctx);
   }
 
  private:
   bool anisotropic_ = false;
-  InputVersions inputs_{{"clipmap_info", "albedo", "normal", "direct"}};
+  graph::InputVersions inputs_{{"clipmap_info", "albedo", "normal", "direct"}};
   std::optional<gpu::ComputePipeline> pipeline_;
 };
 

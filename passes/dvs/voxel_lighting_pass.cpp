@@ -23,10 +23,6 @@ namespace {
 using graph::Access;
 using graph::ResourceKind;
 
-// shaders/lib/shadow_data.glsl ShadowLight: six matrices, origin, info.
-constexpr VkDeviceSize kShadowLightSize = 6 * 64 + 32;
-constexpr uint32_t kShadowFacesPerLight = 6;
-
 enum Occlusion : uint32_t { kOcclusionNone = 0, kOcclusionShadowMap = 1, kOcclusionVoxelRays = 2 };
 
 struct LightingPush {
@@ -67,12 +63,12 @@ class VoxelLightingPass final : public graph::Pass {
       bindings.push_back({5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0});
     }
     if (has_direct_) bindings.push_back({7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
-    pipeline_.emplace(make_dvs_compute(ctx, "voxel_lighting.comp", bindings, sizeof(LightingPush),
-                                       true,
-                                       {{"HAS_EMISSION", has_emission_ ? "1" : "0"},
-                                        {"HAS_SHADOW_MAPS", has_shadow_maps_ ? "1" : "0"},
-                                        {"HAS_DIRECT_COPY", has_direct_ ? "1" : "0"}}));
-    inputs_.reset();
+    pipeline_.emplace(graph::make_pass_compute(ctx, "dvs/voxel_lighting.comp", bindings,
+                                               sizeof(LightingPush), true,
+                                               {{"HAS_EMISSION", has_emission_ ? "1" : "0"},
+                                                {"HAS_SHADOW_MAPS", has_shadow_maps_ ? "1" : "0"},
+                                                {"HAS_DIRECT_COPY", has_direct_ ? "1" : "0"}}));
+    inputs_.forget();
   }
 
   std::string skip_reason(const graph::PassContext& ctx) const override {
@@ -119,20 +115,14 @@ class VoxelLightingPass final : public graph::Pass {
     push.shadow_bias = static_cast<float>(ctx.number("shadow_bias"));
     push.max_steps = static_cast<uint32_t>(ctx.integer("shadow_max_steps"));
     if (has_shadow_maps_) {
-      const graph::BoundResource& maps = ctx.resource("shadow_maps");
-      const graph::BoundResource& matrices = ctx.resource("shadow_matrices");
-      writer.sampled_image(4, maps.view, maps.layout, gpu.sampler(gpu::SamplerKind::ShadowCompare));
-      writer.storage_buffer(5, *matrices.buffer);
-      push.shadow_slots =
-          std::min<uint32_t>(maps.info->array_layers / kShadowFacesPerLight,
-                             static_cast<uint32_t>(matrices.info->buffer_size / kShadowLightSize));
+      push.shadow_slots = graph::write_shadow_inputs(ctx, writer, 4, 5);
     }
     pipeline_->bind(cmd);
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
-    bind_scene_set(ctx, *pipeline_);
+    graph::bind_scene_set(ctx, *pipeline_);
     pipeline_->push_constants(cmd, push);
     dispatch_over_volume(cmd, extent);
-    inputs_.store(ctx);
+    inputs_.remember(ctx);
   }
 
  private:
@@ -162,7 +152,7 @@ class VoxelLightingPass final : public graph::Pass {
   bool has_emission_ = false;
   bool has_shadow_maps_ = false;
   bool has_direct_ = false;
-  InputVersions inputs_{
+  graph::InputVersions inputs_{
       {"clipmap_info", "albedo", "normal", "emission", "shadow_maps", "shadow_matrices"}};
   std::optional<gpu::ComputePipeline> pipeline_;
 };

@@ -108,8 +108,8 @@ class ConeTracePass final : public graph::Pass {
     std::vector<gpu::ShaderDefine> trace_defines = defines;
     trace_defines.push_back({"HALF", half_ ? "1" : "0"});
     trace_defines.push_back({"HAS_SHADOW", shadow_in_trace ? "1" : "0"});
-    trace_.emplace(make_vct_compute(ctx, "trace.comp", trace, sizeof(TracePush), shadow_in_trace,
-                                    trace_defines));
+    trace_.emplace(graph::make_pass_compute(ctx, "vct/trace.comp", trace, sizeof(TracePush),
+                                            shadow_in_trace, trace_defines));
 
     shadow_.reset();
     if (has_shadow_ && half_) {
@@ -119,8 +119,8 @@ class ConeTracePass final : public graph::Pass {
       std::vector<gpu::ShaderDefine> shadow_defines = defines;
       shadow_defines.push_back({"HAS_SHADOW", "1"});
       shadow_defines.push_back({"SHADOW_ONLY", "1"});
-      shadow_.emplace(
-          make_vct_compute(ctx, "trace.comp", shadow, sizeof(TracePush), true, shadow_defines));
+      shadow_.emplace(graph::make_pass_compute(ctx, "vct/trace.comp", shadow, sizeof(TracePush),
+                                               true, shadow_defines));
     }
 
     upsample_.reset();
@@ -129,8 +129,8 @@ class ConeTracePass final : public graph::Pass {
       upsample.push_back(result);
       upsample.push_back({kBindingScratch, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
       if (has_ao_) upsample.push_back(storage_ao);
-      upsample_.emplace(
-          make_vct_compute(ctx, "upsample.comp", upsample, sizeof(UpsamplePush), false, defines));
+      upsample_.emplace(graph::make_pass_compute(ctx, "vct/upsample.comp", upsample,
+                                                 sizeof(UpsamplePush), false, defines));
     }
   }
 
@@ -190,7 +190,7 @@ class ConeTracePass final : public graph::Pass {
       const VkExtent3D e = traced.info->extent;
       trace_->bind(cmd);
       writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, trace_->layout());
-      if (has_shadow_ && !half_) bind_scene_set(ctx, *trace_);
+      if (has_shadow_ && !half_) graph::bind_scene_set(ctx, *trace_);
       trace_->push_constants(cmd, push_for(e));
       vkCmdDispatch(cmd, groups(e.width, kTile), groups(e.height, kTile), 1);
     }
@@ -202,7 +202,7 @@ class ConeTracePass final : public graph::Pass {
       const VkExtent3D e = ctx.info("shadow").extent;
       shadow_->bind(cmd);
       writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadow_->layout());
-      bind_scene_set(ctx, *shadow_);
+      graph::bind_scene_set(ctx, *shadow_);
       shadow_->push_constants(cmd, push_for(e));
       vkCmdDispatch(cmd, groups(e.width, kTile), groups(e.height, kTile), 1);
     }

@@ -58,14 +58,14 @@ class FilterPass final : public graph::Pass {
       bindings.push_back({2 + 2 * v, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
       bindings.push_back({3 + 2 * v, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
     }
-    pipeline_.emplace(make_vct_compute(ctx, "filter.comp", bindings, sizeof(FilterPush), false,
-                                       {{"ANISOTROPIC", anisotropic_ ? "1" : "0"}}));
+    pipeline_.emplace(graph::make_pass_compute(ctx, "vct/filter.comp", bindings, sizeof(FilterPush),
+                                               false, {{"ANISOTROPIC", anisotropic_ ? "1" : "0"}}));
     versions_.forget();
   }
 
   std::string skip_reason(const graph::PassContext& ctx) const override {
     if (ctx.params_changed()) return {};
-    return versions_.changed(ctx).empty() ? "radiance volume unchanged" : std::string();
+    return !versions_.changed(ctx) ? "radiance volume unchanged" : std::string();
   }
 
   void execute(graph::PassContext& ctx) override {
@@ -121,7 +121,7 @@ class FilterPass final : public graph::Pass {
   bool anisotropic_ = true;
   std::vector<std::string> volume_slots_;
   std::optional<gpu::ComputePipeline> pipeline_;
-  InputVersions versions_{{"clipmap_info", "radiance"}};
+  graph::InputVersions versions_{{"clipmap_info", "radiance"}};
 };
 
 graph::SlotSpec filtered_output(const char* name, std::string doc) {

@@ -19,11 +19,6 @@
 namespace voxgi::passes::vct {
 namespace {
 
-// Layout of common.shadow_maps' per-light data (shaders/lib/shadow_data.glsl): six view-
-// projection matrices, origin and info; six array layers per light.
-constexpr VkDeviceSize kShadowLightBytes = 6 * 64 + 32;
-constexpr uint32_t kShadowFacesPerLight = 6;
-
 struct InjectPush {
   uint32_t shadow_slots;
   float normal_offset;
@@ -61,16 +56,15 @@ class InjectPass final : public graph::Pass {
       bindings.push_back({4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
       bindings.push_back({5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0});
     }
-    pipeline_.emplace(make_vct_compute(
-        ctx, "inject.comp", bindings, sizeof(InjectPush), true,
+    pipeline_.emplace(graph::make_pass_compute(
+        ctx, "vct/inject.comp", bindings, sizeof(InjectPush), true,
         {{"HAS_SHADOWS", has_shadows_ ? "1" : "0"}, {"HAS_EMISSION", has_emission_ ? "1" : "0"}}));
     versions_.forget();
   }
 
   std::string skip_reason(const graph::PassContext& ctx) const override {
     if (ctx.params_changed() || ctx.frame().lights_changed) return {};
-    return versions_.changed(ctx).empty() ? "voxels, shadow maps and lights unchanged"
-                                          : std::string();
+    return !versions_.changed(ctx) ? "voxels, shadow maps and lights unchanged" : std::string();
   }
 
   void execute(graph::PassContext& ctx) override {
@@ -93,17 +87,11 @@ class InjectPass final : public graph::Pass {
     InjectPush push{0, static_cast<float>(ctx.number("normal_offset")),
                     ctx.flag("shadows") ? 1u : 0u, 0.0f};
     if (has_shadows_) {
-      const graph::BoundResource& maps = ctx.resource("shadow_maps");
-      const graph::BoundResource& matrices = ctx.resource("shadow_matrices");
-      writer.sampled_image(4, maps.view, maps.layout, gpu.sampler(gpu::SamplerKind::ShadowCompare));
-      writer.storage_buffer(5, *matrices.buffer);
-      push.shadow_slots =
-          std::min<uint32_t>(maps.info->array_layers / kShadowFacesPerLight,
-                             static_cast<uint32_t>(matrices.info->buffer_size / kShadowLightBytes));
+      push.shadow_slots = graph::write_shadow_inputs(ctx, writer, 4, 5);
     }
     pipeline_->bind(cmd);
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
-    bind_scene_set(ctx, *pipeline_);
+    graph::bind_scene_set(ctx, *pipeline_);
     pipeline_->push_constants(cmd, push);
     const VkExtent3D e = out.info->extent;
     vkCmdDispatch(cmd, groups(e.width, kLocal), groups(e.height, kLocal), groups(e.depth, kLocal));
@@ -114,7 +102,7 @@ class InjectPass final : public graph::Pass {
   bool has_shadows_ = false;
   bool has_emission_ = false;
   std::optional<gpu::ComputePipeline> pipeline_;
-  InputVersions versions_{
+  graph::InputVersions versions_{
       {"clipmap_info", "albedo", "normal", "emission", "shadow_maps", "shadow_matrices"}};
 };
 

@@ -4,31 +4,8 @@
 
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/error.hpp"
-#include "engine/scene/gpu_scene.hpp"
 
 namespace voxgi::passes::vct {
-
-gpu::ComputePipeline make_vct_compute(const graph::PassContext& ctx, const std::string& file,
-                                      std::vector<gpu::Binding> bindings,
-                                      uint32_t push_constant_size, bool with_scene_set,
-                                      std::vector<gpu::ShaderDefine> defines) {
-  gpu::PipelineLayoutDesc layout;
-  layout.bindings = std::move(bindings);
-  for (gpu::Binding& binding : layout.bindings) binding.stages = VK_SHADER_STAGE_COMPUTE_BIT;
-  if (with_scene_set) layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};
-  layout.push_constant_size = push_constant_size;
-  layout.push_constant_stages = VK_SHADER_STAGE_COMPUTE_BIT;
-  gpu::ShaderRequest request;
-  request.path = "vct/" + file;
-  request.defines = std::move(defines);
-  return gpu::ComputePipeline(ctx.gpu(), ctx.shaders().compile(request), layout, ctx.pass_name());
-}
-
-void bind_scene_set(const graph::PassContext& ctx, const gpu::ComputePipeline& pipeline) {
-  VkDescriptorSet set = ctx.gpu_scene().descriptor_set();
-  vkCmdBindDescriptorSets(ctx.cmd(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 1, 1, &set,
-                          0, nullptr);
-}
 
 VolumeSampler::VolumeSampler(gpu::Context& context) : context_(context) {
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -114,25 +91,6 @@ FilteredVolumes require_filtered_volumes(const graph::PassContext& ctx, bool wan
                                 missing);
   }
   return FilteredVolumes::Anisotropic;
-}
-
-// Unbound optional slots count as version 0 (resource_version() wants a bound slot).
-uint64_t InputVersions::version(const graph::PassContext& ctx, const std::string& slot) {
-  return ctx.has(slot) ? ctx.resource_version(slot) : 0;
-}
-
-std::string InputVersions::changed(const graph::PassContext& ctx) const {
-  if (!valid_) return "first run";
-  for (size_t i = 0; i < slots_.size(); ++i) {
-    if (version(ctx, slots_[i]) != seen_[i]) return "input '" + slots_[i] + "' changed";
-  }
-  return {};
-}
-
-void InputVersions::remember(const graph::PassContext& ctx) {
-  seen_.clear();
-  for (const std::string& slot : slots_) seen_.push_back(version(ctx, slot));
-  valid_ = true;
 }
 
 }  // namespace voxgi::passes::vct

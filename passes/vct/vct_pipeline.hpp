@@ -1,26 +1,15 @@
 #pragma once
-// Helpers the vct passes share: compiling their shaders, slot declarations, the filtered
-// volume slots and input-version tracking for skip decisions.
+// Helpers the vct passes share: slot declarations, the filtered volume slots and the volume
+// sampler (shaders, compute pipelines and input versions: engine/graph/pass_helpers.hpp).
 
 #include <array>
 #include <string>
 #include <vector>
 
-#include "engine/gpu/pipeline.hpp"
-#include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/pass.hpp"
+#include "engine/graph/pass_helpers.hpp"
 
 namespace voxgi::passes::vct {
-
-// A compute pipeline from shaders/vct/<file>: set 0 holds `bindings` (push descriptors,
-// compute stage), set 1 the scene's descriptor set when `with_scene_set` is true.
-gpu::ComputePipeline make_vct_compute(const graph::PassContext& ctx, const std::string& file,
-                                      std::vector<gpu::Binding> bindings,
-                                      uint32_t push_constant_size, bool with_scene_set,
-                                      std::vector<gpu::ShaderDefine> defines = {});
-
-// Binds the scene's descriptor set as set 1 of a compute pipeline.
-void bind_scene_set(const graph::PassContext& ctx, const gpu::ComputePipeline& pipeline);
 
 // Slot declarations (compute stage).
 graph::SlotSpec clipmap_info_input();
@@ -41,23 +30,6 @@ inline constexpr std::array<const char*, 6> kDirectionalSlots = {"pos_x", "neg_x
 enum class FilteredVolumes { Isotropic, Anisotropic };
 FilteredVolumes bound_filtered_volumes(const graph::PassContext& ctx);
 FilteredVolumes require_filtered_volumes(const graph::PassContext& ctx, bool want_anisotropic);
-
-// Remembers the resource versions of a pass's input slots so it can tell that none of them
-// changed since its last execution.
-class InputVersions {
- public:
-  explicit InputVersions(std::vector<std::string> slots) : slots_(std::move(slots)) {}
-  // Empty when nothing changed since remember(); otherwise what changed.
-  std::string changed(const graph::PassContext& ctx) const;
-  void remember(const graph::PassContext& ctx);
-  void forget() { valid_ = false; }
-
- private:
-  static uint64_t version(const graph::PassContext& ctx, const std::string& slot);
-  std::vector<std::string> slots_;
-  std::vector<uint64_t> seen_;
-  bool valid_ = false;
-};
 
 // The sampler lib/cone_trace.glsl needs for the filtered volumes: linear, whole mips,
 // REPEAT, no anisotropic filtering. Owned by the pass that creates it.

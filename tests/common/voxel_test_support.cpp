@@ -42,19 +42,9 @@ VoxelRun::VoxelRun(const scene::Scene& scene, std::map<std::string, std::string>
       graph::load_graph_file(std::filesystem::path(VOXGI_SOURCE_DIR) / graph);
   graph::PluginLoader loader(graph::PluginLoader::default_search_dirs());
   loader.load_for_graph(desc, registry_);
-  graph::CompileOptions options;
-  options.viewport_width = 16;
-  options.viewport_height = 16;
-  options.scene_features = scene_.features().as_map();
-  options.overrides = std::move(overrides);
-  compiled_ = graph::compile(desc, registry_, options);
-  gpu::Context& context = gpu_context();
-  shaders_ = std::make_unique<gpu::ShaderCompiler>(
-      std::vector<std::filesystem::path>{std::filesystem::path(VOXGI_SOURCE_DIR) / "shaders"},
-      gpu::ShaderCompiler::default_cache_dir());
-  gpu_scene_ = std::make_unique<scene::GpuScene>(context, scene_);
-  executor_ = std::make_unique<graph::Executor>(context, *shaders_, registry_);
-  executor_->build(compiled_, scene_, *gpu_scene_);
+  compiled_ =
+      graph::compile(desc, registry_, test_compile_options(scene_, 16, 16, std::move(overrides)));
+  gpu_ = std::make_unique<TestGraphGpu>(registry_, compiled_, scene_);
 }
 
 VoxelRun::~VoxelRun() = default;
@@ -68,24 +58,24 @@ void VoxelRun::render(const glm::vec3& camera, bool geometry_changed) {
   input.camera_changed = true;
   input.lights_changed = first;
   input.geometry_changed = first || geometry_changed;
-  executor_->render(input);
+  gpu_->executor->render(input);
   ++frames_;
 }
 
 void VoxelRun::animate(double time) {
   scene_.animate(time);
-  gpu_scene_->update(scene_);
+  gpu_->gpu_scene->update(scene_);
 }
 
 std::string VoxelRun::last_skip_reason() const {
-  for (const auto& t : executor_->timings()) {
+  for (const auto& t : gpu_->executor->timings()) {
     if (t.type == "common.voxelize") return t.skipped;
   }
   return "(no voxelize pass)";
 }
 
 double VoxelRun::last_gpu_ms() const {
-  for (const auto& t : executor_->timings()) {
+  for (const auto& t : gpu_->executor->timings()) {
     if (t.type == "common.voxelize") return t.gpu_ms;
   }
   return 0.0;
@@ -115,10 +105,10 @@ std::vector<glm::vec4> decode(const std::vector<uint8_t>& bytes, bool half) {
 
 VoxelVolumes VoxelRun::read() {
   VoxelVolumes v;
-  gpu::Image* albedo = executor_->image("voxel.albedo");
-  gpu::Image* normal = executor_->image("voxel.normal");
-  gpu::Image* emission = executor_->image("voxel.emission");
-  gpu::Buffer* info = executor_->buffer("voxel.clipmap_info");
+  gpu::Image* albedo = gpu_->executor->image("voxel.albedo");
+  gpu::Image* normal = gpu_->executor->image("voxel.normal");
+  gpu::Image* emission = gpu_->executor->image("voxel.emission");
+  gpu::Buffer* info = gpu_->executor->buffer("voxel.clipmap_info");
   v.resolution = albedo->extent().width;
   v.levels = albedo->extent().depth / v.resolution;
   info->download(&v.info, sizeof(v.info));

@@ -15,6 +15,7 @@
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene.hpp"
 #include "passes/common/voxel_clipmap_window.hpp"
+#include "tests/common/test_graph_gpu.hpp"
 
 namespace voxgi::test {
 
@@ -54,9 +55,7 @@ class VoxelRun {
   scene::Scene scene_;
   graph::Registry registry_;
   graph::CompiledGraph compiled_;
-  std::unique_ptr<gpu::ShaderCompiler> shaders_;
-  std::unique_ptr<scene::GpuScene> gpu_scene_;
-  std::unique_ptr<graph::Executor> executor_;
+  std::unique_ptr<TestGraphGpu> gpu_;
   int frames_ = 0;
 };
 

@@ -5,8 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -14,25 +12,13 @@
 #include "dvs_runner.hpp"
 #include "engine/scene/builtin_scenes.hpp"
 #include "engine/scene/scene_builder.hpp"
+#include "tests/common/hard_case_scenes.hpp"
 #include "tests/gpu/gpu_test_env.hpp"
 
 namespace voxgi::test {
 namespace {
 
-using scene::Light;
-using scene::LightType;
-using scene::Material;
 using scene::SceneBuilder;
-
-Material matte(glm::vec3 albedo, glm::vec3 emissive = glm::vec3(0.0f)) {
-  Material m;
-  m.name = "matte";
-  m.base_color = glm::vec4(albedo, 1.0f);
-  m.metallic = 0.0f;
-  m.roughness = 1.0f;
-  m.emissive = emissive;
-  return m;
-}
 
 DvsRunner::Setup graph_setup(scene::Scene scene, uint32_t size,
                              std::map<std::string, std::string> overrides = {}) {
@@ -193,43 +179,10 @@ struct HardCase {
   std::function<scene::Scene()> make;
 };
 
-Light point_light(float intensity) {
-  Light light;
-  light.type = LightType::Point;
-  light.intensity = intensity;
-  return light;
-}
-
-scene::Scene lit_floor(const std::string& name, glm::vec3 offset, float scale) {
-  SceneBuilder b(name);
-  const int white = b.add_material(matte(glm::vec3(0.8f)));
-  b.add_quad("floor", offset + glm::vec3(-1, 0, -1) * scale, glm::vec3(0, 0, 2) * scale,
-             glm::vec3(2, 0, 0) * scale, white);
-  b.add_box("box", offset + glm::vec3(0.3f, 0.2f, 0.0f) * scale, glm::vec3(0.4f) * scale, white);
-  b.add_light(point_light(10.0f * scale * scale), offset + glm::vec3(0, 1, 0) * scale);
-  b.add_camera("top", offset + glm::vec3(0, 3, 0.01f) * scale, offset, 0.8f);
-  return b.finish();
-}
-
 // The cases of HARD-CASES.md that reach the voxels of dvs.json.
 std::vector<HardCase> hard_cases() {
   return {
-      {"degenerate_triangles_and_zero_normals",
-       [] {
-         SceneBuilder b("degenerate");
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
-         std::vector<scene::Vertex> v(9);
-         const glm::vec3 p[9] = {{0, 0, 0}, {0, 0, 0},   {1, 0, 0},  {0, 0, 0}, {0.5f, 0, 0},
-                                 {1, 0, 0}, {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}};
-         for (int i = 0; i < 9; ++i) {
-           v[i].position = p[i];
-           v[i].normal = glm::vec3(0.0f);
-         }
-         b.add_mesh("bad", v, {0, 1, 2, 3, 4, 5, 6, 7, 8}, white);
-         b.add_light(point_light(5.0f), {0, 1, 0});
-         b.add_camera("top", {0, 3, 0.01f}, {0, 0, 0}, 0.8f);
-         return b.finish();
-       }},
+      {"degenerate_triangles_and_zero_normals", [] { return degenerate_triangles(); }},
       {"thin_wall_normals_cancel",
        [] {
          SceneBuilder b("thin_wall");
@@ -242,17 +195,7 @@ std::vector<HardCase> hard_cases() {
          b.add_camera("top", {0.5f, 2.5f, 0.01f}, {0, 0, 0}, 0.9f);
          return b.finish();
        }},
-      {"light_on_a_surface_and_inside_geometry",
-       [] {
-         SceneBuilder b("light_on_surface");
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
-         b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white);
-         b.add_box("box", {0.3f, 0.2f, 0}, glm::vec3(0.4f), white);
-         b.add_light(point_light(10.0f), {0, 0, 0});
-         b.add_light(point_light(10.0f), {0.3f, 0.2f, 0});
-         b.add_camera("top", {0, 3, 0.01f}, {0, 0, 0}, 0.8f);
-         return b.finish();
-       }},
+      {"light_on_a_surface_and_inside_geometry", light_on_a_surface_and_inside_geometry},
       {"very_bright_and_very_dim_emitters_only",
        [] {
          SceneBuilder b("emitters");
@@ -278,31 +221,8 @@ std::vector<HardCase> hard_cases() {
          b.add_camera("inside", {0, -0.5f, 0.5f}, {0, 0, 1}, 1.0f);
          return b.finish();
        }},
-      {"grazing_light",
-       [] {
-         SceneBuilder b("grazing");
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
-         b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white);
-         Light sun;
-         sun.type = LightType::Directional;
-         sun.intensity = 3.0f;
-         b.add_light(sun, {0, 1, 0}, glm::normalize(glm::vec3(1.0f, -1e-4f, 0.0f)));
-         b.add_camera("grazing", {-2, 1e-3f, 0}, {2, 0, 0}, 0.8f);
-         return b.finish();
-       }},
-      {"mirrored_node",
-       [] {
-         SceneBuilder b("mirrored");
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
-         std::vector<scene::Vertex> v(3);
-         v[0].position = {-1, 0, -1};
-         v[1].position = {-1, 0, 1};
-         v[2].position = {1, 0, 1};
-         b.add_mesh("mirrored", v, {0, 1, 2}, white, glm::scale(glm::mat4(1.0f), {-1, 1, 1}));
-         b.add_light(point_light(5.0f), {0, 1, 0});
-         b.add_camera("top", {0, 3, 0.01f}, {0, 0, 0}, 0.8f);
-         return b.finish();
-       }},
+      {"grazing_light", grazing_light},
+      {"mirrored_node", mirrored_node},
   };
 }
 

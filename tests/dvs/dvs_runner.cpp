@@ -117,20 +117,9 @@ DvsRunner::DvsRunner(Setup setup) : setup_(std::move(setup)) {
   for (const std::string& family : desc.families()) {
     if (family != "dvs_test") loader.load_family(family, registry_);
   }
-  graph::CompileOptions options;
-  options.viewport_width = setup_.width;
-  options.viewport_height = setup_.height;
-  options.scene_features = scene_.features().as_map();
-  options.overrides = setup_.overrides;
-  compiled_ = graph::compile(desc, registry_, options);
-
-  gpu::Context& context = gpu_context();
-  shaders_ = std::make_unique<gpu::ShaderCompiler>(
-      std::vector<std::filesystem::path>{std::filesystem::path(VOXGI_SOURCE_DIR) / "shaders"},
-      gpu::ShaderCompiler::default_cache_dir());
-  gpu_scene_ = std::make_unique<scene::GpuScene>(context, scene_);
-  executor_ = std::make_unique<graph::Executor>(context, *shaders_, registry_);
-  executor_->build(compiled_, scene_, *gpu_scene_);
+  compiled_ = graph::compile(
+      desc, registry_, test_compile_options(scene_, setup_.width, setup_.height, setup_.overrides));
+  gpu_ = std::make_unique<TestGraphGpu>(registry_, compiled_, scene_);
 }
 
 DvsRunner::~DvsRunner() = default;
@@ -147,7 +136,7 @@ void DvsRunner::render(bool lights_changed, bool geometry_changed) {
   input.camera_changed = first;
   input.lights_changed = first || lights_changed;
   input.geometry_changed = first || geometry_changed;
-  executor_->render(input);
+  gpu_->executor->render(input);
   ++frames_;
 }
 
@@ -155,16 +144,16 @@ void DvsRunner::move_light(size_t index, glm::vec3 position) {
   scene::Light& light = scene_.lights.at(index);
   scene_.nodes.at(static_cast<size_t>(light.node)).translation = position;
   scene_.update_transforms();
-  gpu_scene_->update(scene_);
+  gpu_->gpu_scene->update(scene_);
 }
 
 std::vector<float> DvsRunner::read(const std::string& output) {
   uint32_t w = 0, h = 0;
-  return executor_->read_output(output, w, h);
+  return gpu_->executor->read_output(output, w, h);
 }
 
 std::string DvsRunner::skipped(const std::string& pass) const {
-  for (const graph::Executor::PassTiming& t : executor_->timings()) {
+  for (const graph::Executor::PassTiming& t : gpu_->executor->timings()) {
     if (t.pass == pass) return t.skipped;
   }
   throw std::invalid_argument("no pass '" + pass + "' ran or skipped in the last frame");

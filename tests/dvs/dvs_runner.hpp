@@ -15,6 +15,7 @@
 #include "engine/graph/pass.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene.hpp"
+#include "tests/common/test_graph_gpu.hpp"
 #include "voxel_grid.hpp"
 
 namespace voxgi::test {
@@ -51,7 +52,7 @@ class DvsRunner {
   // "" when the pass ran in the last frame, else its skip reason.
   std::string skipped(const std::string& pass) const;
   bool ran(const std::string& pass) const;
-  graph::Executor& executor() { return *executor_; }
+  graph::Executor& executor() { return *gpu_->executor; }
   scene::Scene& scene() { return scene_; }
   const scene::Camera& camera() const { return camera_; }
 
@@ -61,9 +62,7 @@ class DvsRunner {
   scene::Camera camera_;
   graph::Registry registry_;
   graph::CompiledGraph compiled_;
-  std::unique_ptr<gpu::ShaderCompiler> shaders_;
-  std::unique_ptr<scene::GpuScene> gpu_scene_;
-  std::unique_ptr<graph::Executor> executor_;
+  std::unique_ptr<TestGraphGpu> gpu_;
   int frames_ = 0;
 };
 

@@ -15,6 +15,7 @@
 
 #include "engine/scene/builtin_scenes.hpp"
 #include "engine/scene/scene_builder.hpp"
+#include "tests/common/hard_case_scenes.hpp"
 #include "tests/common/render_harness.hpp"
 #include "tests/gpu/gpu_test_env.hpp"
 
@@ -26,31 +27,16 @@ using scene::LightType;
 using scene::Material;
 using scene::SceneBuilder;
 
-Material matte(glm::vec3 albedo, glm::vec3 emissive = glm::vec3(0.0f)) {
-  Material m;
-  m.name = "matte";
-  m.base_color = glm::vec4(albedo, 1.0f);
-  m.roughness = 1.0f;
-  m.emissive = emissive;
+// The surfaces of these cases: matte() but with metallic left at the glTF default (1), as the
+// cases were first written.
+Material surface(glm::vec3 albedo, glm::vec3 emissive = glm::vec3(0.0f)) {
+  Material m = matte(albedo, emissive);
+  m.metallic = Material{}.metallic;
   return m;
 }
 
-Light point_light(float intensity) {
-  Light light;
-  light.type = LightType::Point;
-  light.intensity = intensity;
-  return light;
-}
-
 scene::Scene lit_floor(const std::string& name, glm::vec3 offset, float scale, glm::vec3 eye) {
-  SceneBuilder b(name);
-  const int white = b.add_material(matte(glm::vec3(0.8f)));
-  b.add_quad("floor", offset + glm::vec3(-1, 0, -1) * scale, glm::vec3(0, 0, 2) * scale,
-             glm::vec3(2, 0, 0) * scale, white);
-  b.add_box("box", offset + glm::vec3(0.3f, 0.2f, 0.0f) * scale, glm::vec3(0.4f) * scale, white);
-  b.add_light(point_light(10.0f * scale * scale), offset + glm::vec3(0, 1, 0) * scale);
-  b.add_camera("view", offset + eye * scale, offset, 0.8f);
-  return b.finish();
+  return test::lit_floor(name, offset, scale, eye, "view", surface(glm::vec3(0.8f)));
 }
 
 struct HardCase {
@@ -71,7 +57,7 @@ std::vector<HardCase> hard_cases() {
       {"no_lights",
        [] {
          SceneBuilder b("no_lights");
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
+         const int white = b.add_material(surface(glm::vec3(0.8f)));
          b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white);
          b.add_box("box", {0, 0.2f, 0}, glm::vec3(0.4f), white);
          b.add_camera("top", {0, 2, 1}, {0, 0, 0}, 0.8f);
@@ -80,9 +66,9 @@ std::vector<HardCase> hard_cases() {
       {"emissive_only_very_bright_and_dim",
        [] {
          SceneBuilder b("emitters");
-         const int bright = b.add_material(matte(glm::vec3(0.5f), glm::vec3(1e5f)));
-         const int dim = b.add_material(matte(glm::vec3(0.5f), glm::vec3(1e-5f)));
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
+         const int bright = b.add_material(surface(glm::vec3(0.5f), glm::vec3(1e5f)));
+         const int dim = b.add_material(surface(glm::vec3(0.5f), glm::vec3(1e-5f)));
+         const int white = b.add_material(surface(glm::vec3(0.8f)));
          b.add_quad("bright", {-1, 0, -1}, {0, 0, 2}, {1, 0, 0}, bright);
          b.add_quad("dim", {0, 0, -1}, {0, 0, 2}, {1, 0, 0}, dim);
          b.add_box("box", {0.5f, 0.2f, 0}, glm::vec3(0.3f), white);
@@ -92,7 +78,7 @@ std::vector<HardCase> hard_cases() {
       {"camera_inside_geometry",
        [] {
          SceneBuilder b("inside");
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
+         const int white = b.add_material(surface(glm::vec3(0.8f)));
          b.add_box("room", {0, 0, 0}, glm::vec3(2.0f), white);
          b.add_box("block", {0, 0, 0}, glm::vec3(0.2f), white);  // the camera is in here
          b.add_light(point_light(5.0f), {0.5f, 0.5f, 0.5f});
@@ -104,7 +90,7 @@ std::vector<HardCase> hard_cases() {
       {"grazing_light_and_view",
        [] {
          SceneBuilder b("grazing");
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
+         const int white = b.add_material(surface(glm::vec3(0.8f)));
          b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white);
          b.add_box("box", {0.5f, 0.1f, 0}, glm::vec3(0.2f), white);
          Light sun;
@@ -117,7 +103,7 @@ std::vector<HardCase> hard_cases() {
       {"thin_double_sided_wall_and_light_on_it",
        [] {
          SceneBuilder b("thin");
-         Material m = matte(glm::vec3(0.8f));
+         Material m = surface(glm::vec3(0.8f));
          m.double_sided = true;
          const int white = b.add_material(m);
          b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white);
@@ -128,22 +114,7 @@ std::vector<HardCase> hard_cases() {
          b.add_camera("top", {0.5f, 2, 1.5f}, {0, 0.3f, 0}, 0.8f);
          return b.finish();
        }},
-      {"degenerate_triangles",
-       [] {
-         SceneBuilder b("degenerate");
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
-         std::vector<scene::Vertex> v(9);
-         const glm::vec3 p[9] = {{0, 0, 0}, {0, 0, 0},   {1, 0, 0},  {0, 0, 0}, {0.5f, 0, 0},
-                                 {1, 0, 0}, {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}};
-         for (int i = 0; i < 9; ++i) {
-           v[i].position = p[i];
-           v[i].normal = glm::vec3(0.0f);
-         }
-         b.add_mesh("bad", v, {0, 1, 2, 3, 4, 5, 6, 7, 8}, white);
-         b.add_light(point_light(5.0f), {0, 1, 0});
-         b.add_camera("top", {0, 3, 0.01f}, {0, 0, 0}, 0.8f);
-         return b.finish();
-       }},
+      {"degenerate_triangles", [] { return degenerate_triangles(surface(glm::vec3(0.8f))); }},
       {"far_from_the_origin",
        [] { return lit_floor("far", glm::vec3(1e5f, 0, -1e5f), 1.0f, glm::vec3(0, 2, 1.5f)); }},
       {"tiny_scene",
@@ -151,15 +122,15 @@ std::vector<HardCase> hard_cases() {
       {"glossy_metal_and_mirror_half_resolution",
        [] {
          SceneBuilder b("glossy");
-         Material metal = matte(glm::vec3(0.9f, 0.6f, 0.3f));
+         Material metal = surface(glm::vec3(0.9f, 0.6f, 0.3f));
          metal.metallic = 1.0f;
          metal.roughness = 0.3f;
-         Material mirror = matte(glm::vec3(0.95f));
+         Material mirror = surface(glm::vec3(0.95f));
          mirror.metallic = 1.0f;
          mirror.roughness = 0.0f;
          const int floor = b.add_material(metal);
          const int wall = b.add_material(mirror);
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
+         const int white = b.add_material(surface(glm::vec3(0.8f)));
          b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, floor);
          b.add_quad("mirror", {-1, 0, -1}, {2, 0, 0}, {0, 1, 0}, wall);
          b.add_box("box", {0.3f, 0.2f, 0}, glm::vec3(0.4f), white);

@@ -1,0 +1,68 @@
+#include "engine/graph/pass_helpers.hpp"
+
+#include <algorithm>
+
+#include "engine/gpu/context.hpp"
+#include "engine/scene/gpu_scene.hpp"
+
+namespace voxgi::graph {
+
+std::vector<uint32_t> compile_pass_shader(const PassContext& ctx, const std::string& path,
+                                          std::vector<gpu::ShaderDefine> defines) {
+  gpu::ShaderRequest request;
+  request.path = path;
+  request.defines = std::move(defines);
+  return ctx.shaders().compile(request);
+}
+
+gpu::ComputePipeline make_pass_compute(const PassContext& ctx, const std::string& path,
+                                       std::vector<gpu::Binding> bindings,
+                                       uint32_t push_constant_size, bool with_scene_set,
+                                       std::vector<gpu::ShaderDefine> defines) {
+  gpu::PipelineLayoutDesc layout;
+  layout.bindings = std::move(bindings);
+  for (gpu::Binding& binding : layout.bindings) binding.stages = VK_SHADER_STAGE_COMPUTE_BIT;
+  if (with_scene_set) layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};
+  layout.push_constant_size = push_constant_size;
+  layout.push_constant_stages = VK_SHADER_STAGE_COMPUTE_BIT;
+  return gpu::ComputePipeline(ctx.gpu(), compile_pass_shader(ctx, path, std::move(defines)), layout,
+                              ctx.pass_name());
+}
+
+void bind_scene_set(const PassContext& ctx, const gpu::ComputePipeline& pipeline) {
+  VkDescriptorSet set = ctx.gpu_scene().descriptor_set();
+  vkCmdBindDescriptorSets(ctx.cmd(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 1, 1, &set,
+                          0, nullptr);
+}
+
+uint32_t write_shadow_inputs(const PassContext& ctx, gpu::DescriptorWriter& writer,
+                             uint32_t maps_binding, uint32_t lights_binding) {
+  const BoundResource& maps = ctx.resource("shadow_maps");
+  const BoundResource& matrices = ctx.resource("shadow_matrices");
+  writer.sampled_image(maps_binding, maps.view, maps.layout,
+                       ctx.gpu().sampler(gpu::SamplerKind::ShadowCompare));
+  writer.storage_buffer(lights_binding, *matrices.buffer);
+  return std::min<uint32_t>(maps.info->array_layers / kShadowFacesPerLight,
+                            static_cast<uint32_t>(matrices.info->buffer_size / kShadowLightBytes));
+}
+
+std::vector<uint64_t> InputVersions::current(const PassContext& ctx) const {
+  std::vector<uint64_t> versions;
+  versions.reserve(slots_.size());
+  // resource_version() wants a bound slot.
+  for (const std::string& slot : slots_) {
+    versions.push_back(ctx.has(slot) ? ctx.resource_version(slot) : 0);
+  }
+  return versions;
+}
+
+bool InputVersions::changed(const PassContext& ctx) const {
+  return !valid_ || seen_ != current(ctx);
+}
+
+void InputVersions::remember(const PassContext& ctx) {
+  seen_ = current(ctx);
+  valid_ = true;
+}
+
+}  // namespace voxgi::graph

@@ -1,0 +1,60 @@
+#pragma once
+// Helpers for writing passes that every family shares: compiling a family's shaders, compute
+// pipelines with push descriptors (and optionally the scene's set), binding the scene's set,
+// and remembering input versions for skip decisions.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/gpu/pipeline.hpp"
+#include "engine/gpu/shader_compiler.hpp"
+#include "engine/graph/pass.hpp"
+
+namespace voxgi::graph {
+
+// Compiles shaders/<path> (e.g. "vct/filter.comp") with the given defines.
+std::vector<uint32_t> compile_pass_shader(const PassContext& ctx, const std::string& path,
+                                          std::vector<gpu::ShaderDefine> defines = {});
+
+// A compute pipeline from shaders/<path>: set 0 holds `bindings` (push descriptors, compute
+// stage), set 1 the scene's descriptor set when `with_scene_set` is true. Named after the pass.
+gpu::ComputePipeline make_pass_compute(const PassContext& ctx, const std::string& path,
+                                       std::vector<gpu::Binding> bindings,
+                                       uint32_t push_constant_size, bool with_scene_set,
+                                       std::vector<gpu::ShaderDefine> defines = {});
+
+// Binds the scene's descriptor set as set 1 of a compute pipeline.
+void bind_scene_set(const PassContext& ctx, const gpu::ComputePipeline& pipeline);
+
+// The shadow data common.shadow_maps writes and lighting passes read
+// (shaders/lib/shadow_data.glsl): light i owns array layers 6i .. 6i+5 of the shadow map image
+// and one 6 * 64 + 32-byte record of the shadow matrices buffer.
+inline constexpr uint32_t kShadowFacesPerLight = 6;
+inline constexpr VkDeviceSize kShadowLightBytes = 6 * 64 + 32;
+
+// Writes the bound slots "shadow_maps" (with the shadow-compare sampler) at `maps_binding` and
+// "shadow_matrices" at `lights_binding`; returns how many lights' shadows both hold.
+uint32_t write_shadow_inputs(const PassContext& ctx, gpu::DescriptorWriter& writer,
+                             uint32_t maps_binding, uint32_t lights_binding);
+
+// Remembers the resource versions (PassContext::resource_version) of a pass's input slots at
+// its last execute(), so that skip_reason() can tell whether any of them has been written
+// since. An unbound optional slot counts as version 0.
+class InputVersions {
+ public:
+  explicit InputVersions(std::vector<std::string> slots) : slots_(std::move(slots)) {}
+  // True before the first remember(), after forget(), and whenever a slot's version differs
+  // from the remembered one.
+  bool changed(const PassContext& ctx) const;
+  void remember(const PassContext& ctx);
+  void forget() { valid_ = false; }
+
+ private:
+  std::vector<uint64_t> current(const PassContext& ctx) const;
+  std::vector<std::string> slots_;
+  std::vector<uint64_t> seen_;
+  bool valid_ = false;
+};
+
+}  // namespace voxgi::graph

@@ -24,6 +24,10 @@ gpu::ComputePipeline make_pass_compute(const PassContext& ctx, const std::string
                                        uint32_t push_constant_size, bool with_scene_set,
                                        std::vector<gpu::ShaderDefine> defines = {});
 
+// A 2D image read through a sampler in compute (any format unless `formats` is given).
+SlotSpec sampled_2d_input(const char* name, const char* doc, bool optional = false,
+                          std::vector<VkFormat> formats = {});
+
 // Binds the scene's descriptor set as set 1 of a compute pipeline.
 void bind_scene_set(const PassContext& ctx, const gpu::ComputePipeline& pipeline);
 

@@ -83,11 +83,11 @@ void register_composite(graph::Registry& registry) {
   graph::PassTypeInfo info;
   info.type = "common.composite";
   info.doc = "Sums direct and indirect radiance; ambient occlusion scales the indirect terms";
-  info.inputs = {
-      sampled_input("direct", "direct radiance (emission included)", false),
-      sampled_input("indirect_diffuse", "indirect diffuse radiance", true),
-      sampled_input("indirect_specular", "indirect specular radiance", true),
-      sampled_input("ambient_occlusion", "ambient occlusion in r (1 = unoccluded)", true)};
+  info.inputs = {graph::sampled_2d_input("direct", "direct radiance (emission included)", false),
+                 graph::sampled_2d_input("indirect_diffuse", "indirect diffuse radiance", true),
+                 graph::sampled_2d_input("indirect_specular", "indirect specular radiance", true),
+                 graph::sampled_2d_input("ambient_occlusion",
+                                         "ambient occlusion in r (1 = unoccluded)", true)};
   graph::SlotSpec indirect_output = radiance_output(
       "indirect", "the indirect radiance as added to the image (AO and scale applied)");
   indirect_output.optional = true;

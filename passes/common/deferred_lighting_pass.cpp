@@ -102,13 +102,13 @@ void register_deferred_lighting(graph::Registry& registry) {
       "Direct lighting of the G-buffer by all punctual lights with the glTF BRDF, shadow maps "
       "(PCF) and emission";
   info.inputs = {
-      sampled_input("base_color", "G-buffer base colour"),
-      sampled_input("normal", "G-buffer normal + roughness"),
-      sampled_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
-      sampled_input("emission", "G-buffer emission"),
-      sampled_input("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}),
-      sampled_input("shadow_maps", "from common.shadow_maps; unbound: no shadows", true,
-                    {VK_FORMAT_D32_SFLOAT}),
+      graph::sampled_2d_input("base_color", "G-buffer base colour"),
+      graph::sampled_2d_input("normal", "G-buffer normal + roughness"),
+      graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
+      graph::sampled_2d_input("emission", "G-buffer emission"),
+      graph::sampled_2d_input("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}),
+      graph::sampled_2d_input("shadow_maps", "from common.shadow_maps; unbound: no shadows", true,
+                              {VK_FORMAT_D32_SFLOAT}),
       {"shadow_matrices",
        graph::kinds(ResourceKind::Buffer),
        Access::StorageRead,

@@ -2,17 +2,6 @@
 
 namespace voxgi::passes::common {
 
-graph::SlotSpec sampled_input(const char* name, const char* doc, bool optional,
-                              std::vector<VkFormat> formats) {
-  return {name,
-          graph::kinds(graph::ResourceKind::Image2D),
-          graph::Access::Sampled,
-          graph::kStageCompute,
-          std::move(formats),
-          optional,
-          doc};
-}
-
 graph::SlotSpec radiance_output(const char* name, const char* doc) {
   return {name,
           graph::kinds(graph::ResourceKind::Image2D),

@@ -11,9 +11,6 @@
 namespace voxgi::passes::common {
 
 // Slot declarations the family's compute passes share.
-// A 2D image read through a sampler in compute (any format unless `formats` is given).
-graph::SlotSpec sampled_input(const char* name, const char* doc, bool optional = false,
-                              std::vector<VkFormat> formats = {});
 // A 2D HDR radiance image (rgba16f or rgba32f) written as a storage image in compute.
 graph::SlotSpec radiance_output(const char* name, const char* doc);
 

@@ -269,10 +269,12 @@ std::vector<graph::SlotSpec> trace_inputs() {
                                     std::string("directional volume for cones travelling ") +
                                         directions[i] + " from vct.filter (anisotropic)"));
   }
-  inputs.push_back(sampled_2d("base_color", "G-buffer base colour"));
-  inputs.push_back(sampled_2d("normal", "G-buffer normal + roughness"));
-  inputs.push_back(sampled_2d("material", "G-buffer metallic, roughness, occlusion, coverage"));
-  inputs.push_back(sampled_2d("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}));
+  inputs.push_back(graph::sampled_2d_input("base_color", "G-buffer base colour"));
+  inputs.push_back(graph::sampled_2d_input("normal", "G-buffer normal + roughness"));
+  inputs.push_back(
+      graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"));
+  inputs.push_back(
+      graph::sampled_2d_input("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}));
   return inputs;
 }
 

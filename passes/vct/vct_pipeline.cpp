@@ -32,17 +32,6 @@ graph::SlotSpec clipmap_info_input() {
           "VoxelClipmapInfo (lib/voxel_clipmap.glsl) written by the voxelization pass"};
 }
 
-graph::SlotSpec sampled_2d(const char* name, const char* doc, bool optional,
-                           std::vector<VkFormat> formats) {
-  return {name,
-          graph::kinds(graph::ResourceKind::Image2D),
-          graph::Access::Sampled,
-          graph::kStageCompute,
-          std::move(formats),
-          optional,
-          doc};
-}
-
 graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional,
                                 std::vector<VkFormat> formats) {
   return {name,

@@ -5,12 +5,23 @@
 
 namespace voxgi::passes::common {
 
-double auto_voxel_size(double scene_extent, uint32_t resolution, uint32_t levels) {
+double auto_voxel_size(double scene_extent, uint32_t resolution, uint32_t levels, double reach) {
   const double extent = std::isfinite(scene_extent) && scene_extent > 1e-9 ? scene_extent : 1.0;
   const double r = static_cast<double>(resolution);
-  if (levels <= 1) return extent / std::max(1.0, r - 4.0);
-  const double coarsest = 2.0 * extent / std::max(1.0, r / 2.0 - 1.0);
+  // Voxels of the coarsest level surely inside its window on each side of the centre: R/2,
+  // less one the window snapping may take and one that consumers keep as a margin.
+  const double sure = std::max(1.0, r / 2.0 - 2.0);
+  const double for_reach = std::isfinite(reach) && reach > 0.0 ? reach / sure : 0.0;
+  if (levels <= 1) return std::max(extent / std::max(1.0, r - 4.0), for_reach);
+  const double coarsest = std::max(2.0 * extent / std::max(1.0, r / 2.0 - 1.0), for_reach);
   return coarsest / std::ldexp(1.0, static_cast<int>(levels) - 1);
+}
+
+double window_reach(const glm::dvec3& center, const glm::dvec3& scene_min,
+                    const glm::dvec3& scene_max) {
+  const glm::dvec3 far = glm::max(glm::abs(center - scene_min), glm::abs(scene_max - center));
+  const double reach = std::max({far.x, far.y, far.z});
+  return std::isfinite(reach) ? reach : 0.0;
 }
 
 glm::dvec3 snap_anchor(const glm::dvec3& point, double coarsest_voxel_size) {

@@ -320,8 +320,17 @@ class VoxelizePass final : public graph::Pass {
     scene_center_ = 0.5 * (glm::dvec3(mn) + glm::dvec3(mx));
     const glm::dvec3 side = glm::dvec3(mx) - glm::dvec3(mn);
     const double extent = std::max({side.x, side.y, side.z});
-    voxel_size_ = ctx.number("voxel_size");
-    if (!(voxel_size_ > 0.0)) voxel_size_ = auto_voxel_size(extent, resolution_, levels_);
+    if (!initialized_) {  // re-anchoring far away keeps the voxel size
+      voxel_size_ = ctx.number("voxel_size");
+      if (!(voxel_size_ > 0.0)) {
+        // Windows that follow the camera must reach from it to the far side of the scene,
+        // or a camera outside the scene leaves the back of the scene out of every level.
+        const double reach = follows_camera(ctx)
+                                 ? window_reach(window_center(ctx), glm::dvec3(mn), glm::dvec3(mx))
+                                 : 0.0;
+        voxel_size_ = auto_voxel_size(extent, resolution_, levels_, reach);
+      }
+    }
     const double coarsest = level_size(levels_ - 1);
     glm::dvec3 around = scene_center_;
     if (initialized_) around = window_center(ctx);  // re-anchoring far away
@@ -506,7 +515,8 @@ void register_voxelize(graph::Registry& registry) {
        1e5,
        {},
        "level-0 voxel edge (m); 0 = automatic: one level fits the scene bounds, L levels make "
-       "the coarsest level's half-width span twice the scene's largest side",
+       "the coarsest level's half-width span twice the scene's largest side; windows that "
+       "follow the camera also reach from its first position to the far side of the scene",
        false},
       {"strategy",
        graph::ParamType::Enum,

@@ -6,6 +6,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <random>
@@ -68,6 +70,37 @@ TEST(VoxelClipmapWindow, LevelsStayNestedOnCoarserGrids) {
       const glm::ivec3 fine_in_coarse = fine / 2;
       EXPECT_TRUE(glm::all(glm::greaterThanEqual(fine_in_coarse, coarse)));
       EXPECT_TRUE(glm::all(glm::lessThanEqual(fine_in_coarse + int(r / 2), coarse + int(r))));
+    }
+  }
+}
+
+// Camera-centred windows of the automatic voxel size hold the whole scene, with the one-voxel
+// margin of the consumers, from any starting camera (here up to five scene sizes outside).
+TEST(VoxelClipmapWindow, AutomaticSizeHoldsTheSceneFromTheStartingCamera) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    const glm::dvec3 scene_min(unit(rng) * 10.0 - 5.0, unit(rng) * 10.0 - 5.0, unit(rng) - 0.5);
+    const glm::dvec3 side(0.1 + unit(rng), 0.1 + unit(rng), 0.1 + unit(rng));
+    const glm::dvec3 scene_max = scene_min + side;
+    const double extent = std::max({side.x, side.y, side.z});
+    const glm::dvec3 camera =
+        scene_min + glm::dvec3(unit(rng), unit(rng), unit(rng)) * (11.0 * extent) - 5.0 * extent;
+    for (uint32_t r : {16u, 32u, 128u}) {
+      for (uint32_t levels : {1u, 3u, 6u}) {
+        const double reach = passes::common::window_reach(camera, scene_min, scene_max);
+        const double coarsest = passes::common::auto_voxel_size(extent, r, levels, reach) *
+                                std::ldexp(1.0, int(levels) - 1);
+        const glm::dvec3 anchor =
+            passes::common::snap_anchor(0.5 * (scene_min + scene_max), coarsest);
+        const glm::ivec3 origin = window_origin(camera - anchor, coarsest, r);
+        const glm::dvec3 lo = (scene_min - anchor) / coarsest - glm::dvec3(origin);
+        const glm::dvec3 hi = (scene_max - anchor) / coarsest - glm::dvec3(origin);
+        for (int a = 0; a < 3; ++a) {
+          ASSERT_GE(lo[a], 1.0) << "trial " << trial << " R " << r << " L " << levels;
+          ASSERT_LE(hi[a], double(r) - 1.0) << "trial " << trial << " R " << r << " L " << levels;
+        }
+      }
     }
   }
 }

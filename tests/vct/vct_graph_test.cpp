@@ -18,10 +18,18 @@ namespace {
 
 class VctGraphTest : public GpuTest {};
 
-RenderSetup vct_setup(scene::Scene scene, uint32_t size = 128) {
+// graphs/vct.json pinned to one dense 64^3 level: the scenes here are closed boxes sized for it,
+// and a small volume keeps the tests fast on a CPU device.
+RenderSetup dense_vct_setup() {
   RenderSetup setup;
-  setup.scene_data = std::move(scene);
   setup.graph = "graphs/vct.json";
+  setup.overrides = {{"voxel.resolution", "64"}, {"voxel.levels", "1"}};
+  return setup;
+}
+
+RenderSetup vct_setup(scene::Scene scene, uint32_t size = 128) {
+  RenderSetup setup = dense_vct_setup();
+  setup.scene_data = std::move(scene);
   setup.width = size;
   setup.height = size;
   return setup;
@@ -117,9 +125,8 @@ TEST_F(VctGraphTest, OneVoxelWallLeaksLittle) {
 // ceiling is redder (higher R/G) near the red wall than near the green one, and the other
 // way round for green; outputs are finite; a static scene gives bit-identical frames.
 TEST_F(VctGraphTest, CornellBleedsTheRightColourAndIsStable) {
-  RenderSetup setup;
+  RenderSetup setup = dense_vct_setup();
   setup.scene = "cornell";
-  setup.graph = "graphs/vct.json";
   RenderHarness harness(setup);
   harness.render();
   const RenderedImage indirect = harness.output("indirect");
@@ -173,9 +180,8 @@ TEST_F(VctGraphTest, CornellBleedsTheRightColourAndIsStable) {
 // mean absolute difference under 15% of the mean (measured 11% at 96^2, where contact
 // shadows and silhouettes are a few pixels wide).
 TEST_F(VctGraphTest, HalfResolutionMatchesFullResolution) {
-  RenderSetup full;
+  RenderSetup full = dense_vct_setup();
   full.scene = "cornell";
-  full.graph = "graphs/vct.json";
   full.width = full.height = 96;
   RenderSetup half = full;
   half.overrides["cone_trace.resolution"] = "half";

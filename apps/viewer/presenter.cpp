@@ -11,6 +11,7 @@
 
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/error.hpp"
+#include "engine/gpu/sync.hpp"
 
 namespace voxgi::viewer {
 namespace {
@@ -192,20 +193,13 @@ void Presenter::record(uint32_t index, uint32_t width, uint32_t height, ImDrawDa
   VkImage image = swapchain_->image(index);
   const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
 
-  VkImageMemoryBarrier2 to_transfer{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  to_transfer.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-  to_transfer.srcAccessMask = VK_ACCESS_2_NONE;
-  to_transfer.dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
-  to_transfer.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-  to_transfer.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  to_transfer.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  to_transfer.srcQueueFamilyIndex = to_transfer.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  to_transfer.image = image;
-  to_transfer.subresourceRange = range;
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.imageMemoryBarrierCount = 1;
-  dependency.pImageMemoryBarriers = &to_transfer;
-  vkCmdPipelineBarrier2(cmd_, &dependency);
+  using gpu::BarrierScope;
+  constexpr BarrierScope kNothing{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_NONE};
+  constexpr BarrierScope kClearWrite{VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
+  constexpr BarrierScope kCopyWrite{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
+  constexpr VkImageLayout kTransferDst = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  gpu::image_barrier(cmd_, image, range, VK_IMAGE_LAYOUT_UNDEFINED, kTransferDst, kNothing,
+                     kClearWrite);
 
   const VkClearColorValue background{{0.08f, 0.08f, 0.09f, 1.0f}};
   vkCmdClearColorImage(cmd_, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &background, 1, &range);
@@ -215,14 +209,7 @@ void Presenter::record(uint32_t index, uint32_t width, uint32_t height, ImDrawDa
   const uint32_t copy_h = std::min(height, extent.height);
   if (staging_ && copy_w > 0 && copy_h > 0) {
     // The clear and the copy both write the image.
-    VkImageMemoryBarrier2 between = to_transfer;
-    between.srcStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
-    between.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    between.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    between.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    between.oldLayout = between.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    dependency.pImageMemoryBarriers = &between;
-    vkCmdPipelineBarrier2(cmd_, &dependency);
+    gpu::image_barrier(cmd_, image, range, kTransferDst, kTransferDst, kClearWrite, kCopyWrite);
     VkBufferImageCopy copy{};
     copy.bufferRowLength = width;
     copy.bufferImageHeight = height;
@@ -232,15 +219,11 @@ void Presenter::record(uint32_t index, uint32_t width, uint32_t height, ImDrawDa
                            &copy);
   }
   // The render pass's external dependency orders the UI after the transfers.
-  VkImageMemoryBarrier2 to_ui = to_transfer;
-  to_ui.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-  to_ui.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-  to_ui.dstStageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-  to_ui.dstAccessMask =
-      VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-  to_ui.oldLayout = to_ui.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  dependency.pImageMemoryBarriers = &to_ui;
-  vkCmdPipelineBarrier2(cmd_, &dependency);
+  gpu::image_barrier(
+      cmd_, image, range, kTransferDst, kTransferDst,
+      {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT},
+      {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+       VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT});
 
   VkRenderPassBeginInfo pass{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   pass.renderPass = render_pass_;
@@ -250,39 +233,20 @@ void Presenter::record(uint32_t index, uint32_t width, uint32_t height, ImDrawDa
   if (ui) ImGui_ImplVulkan_RenderDrawData(ui, cmd_);
   vkCmdEndRenderPass(cmd_);
   if (capture) {
-    VkImageMemoryBarrier2 to_read = to_transfer;
-    to_read.srcStageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
-    to_read.srcAccessMask = VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-    to_read.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    to_read.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    to_read.oldLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-    to_read.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    dependency.pImageMemoryBarriers = &to_read;
-    vkCmdPipelineBarrier2(cmd_, &dependency);
+    gpu::image_barrier(
+        cmd_, image, range, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT},
+        {VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT});
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     copy.imageExtent = {extent.width, extent.height, 1};
     vkCmdCopyImageToBuffer(cmd_, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                            capture_buffer_->handle(), 1, &copy);
-    VkImageMemoryBarrier2 back = to_read;
-    back.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    back.srcAccessMask = VK_ACCESS_2_NONE;
-    back.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    back.dstAccessMask = VK_ACCESS_2_NONE;
-    back.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    back.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-    VkBufferMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
-    to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    to_host.srcQueueFamilyIndex = to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    to_host.buffer = capture_buffer_->handle();
-    to_host.size = VK_WHOLE_SIZE;
-    dependency.pImageMemoryBarriers = &back;
-    dependency.bufferMemoryBarrierCount = 1;
-    dependency.pBufferMemoryBarriers = &to_host;
-    vkCmdPipelineBarrier2(cmd_, &dependency);
+    gpu::image_barrier(cmd_, image, range, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                       VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                       {VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE}, kNothing);
+    gpu::memory_barrier(cmd_, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
   }
   gpu::check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
 }

@@ -6,15 +6,11 @@
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/error.hpp"
+#include "engine/gpu/sync.hpp"
 
 namespace voxgi::gpu {
 
 namespace {
-
-struct BarrierScope {
-  VkPipelineStageFlags2 stages;
-  VkAccessFlags2 access;
-};
 
 constexpr BarrierScope kAnything{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                                  VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT};
@@ -22,25 +18,6 @@ constexpr BarrierScope kTransferWrite{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                                       VK_ACCESS_2_TRANSFER_WRITE_BIT};
 constexpr BarrierScope kTransferRead{VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                                      VK_ACCESS_2_TRANSFER_READ_BIT};
-
-void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range,
-                   VkImageLayout from, VkImageLayout to, BarrierScope src, BarrierScope dst) {
-  VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-  barrier.srcStageMask = src.stages;
-  barrier.srcAccessMask = src.access;
-  barrier.dstStageMask = dst.stages;
-  barrier.dstAccessMask = dst.access;
-  barrier.oldLayout = from;
-  barrier.newLayout = to;
-  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image;
-  barrier.subresourceRange = range;
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.imageMemoryBarrierCount = 1;
-  dependency.pImageMemoryBarriers = &barrier;
-  vkCmdPipelineBarrier2(cmd, &dependency);
-}
 
 std::string usage_text(VkImageUsageFlags usage) {
   std::string text;

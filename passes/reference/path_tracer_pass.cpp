@@ -33,6 +33,7 @@ constexpr uint32_t kTile = 8;
 constexpr uint32_t kAccumulationLayers = 4;
 constexpr uint32_t kFlagLambert = 1;
 constexpr uint32_t kFlagPixelJitter = 2;
+constexpr uint32_t kFlagDeferredLayers = 4;
 
 // Mirrors the push-constant block of shaders/reference/path_trace.comp.
 struct PathTracePush {
@@ -190,7 +191,8 @@ class PathTracerPass final : public graph::Pass {
     push.max_depth = static_cast<uint32_t>(ctx.integer("max_depth"));
     push.rr_start = static_cast<uint32_t>(ctx.integer("rr_start"));
     push.flags = (ctx.flag("lambert") ? kFlagLambert : 0u) |
-                 (ctx.flag("pixel_jitter") ? kFlagPixelJitter : 0u);
+                 (ctx.flag("pixel_jitter") ? kFlagPixelJitter : 0u) |
+                 (ctx.flag("deferred_layers") ? kFlagDeferredLayers : 0u);
     push.node_count = gpu_bvh_->node_count();
     push.emitter_count = gpu_bvh_->emitter_count();
     pipeline_->push_constants(cmd, push);
@@ -272,6 +274,16 @@ void register_path_tracer(graph::Registry& registry) {
        1.0,
        {},
        "override every material by a Lambertian of its base colour",
+       true},
+      {"deferred_layers",
+       graph::ParamType::Bool,
+       0.0,
+       0.0,
+       1.0,
+       {},
+       "split direct/indirect as deferred lighting + voxel GI do (direct: emission seen and "
+       "punctual lights at the first hit; emissive surfaces reach max_depth - 1 reflections), "
+       "for like-with-like comparisons of GI techniques",
        true},
       {"pixel_jitter",
        graph::ParamType::Bool,

@@ -49,6 +49,12 @@ layout(set = 0, binding = 9) writeonly uniform image2D out_variance;
 
 const uint FLAG_LAMBERT = 1u;
 const uint FLAG_PIXEL_JITTER = 2u;
+// Layers as a deferred renderer with voxel GI splits them (path_tracer.deferred_layers): direct =
+// emission seen from the camera + punctual lights at the first hit (what deferred lighting
+// computes); everything else is indirect. Emissive surfaces light the scene with one reflection
+// less than punctual lights (max_depth - 1): voxel GI injects emission as voxel radiance, but
+// punctual light only after its first reflection.
+const uint FLAG_DEFERRED_LAYERS = 4u;
 
 layout(push_constant) uniform Push {
   vec4 origin;  // xyz: BVH origin in world space
@@ -199,9 +205,12 @@ vec3 emitted(MaterialSample m) {
 }
 
 // Direct light from the punctual lights and one sampled emissive triangle (MIS-weighted).
-vec3 next_event(Hit hit, Bsdf b, vec3 v, inout uint rng) {
+// Light arriving at `hit` straight from the punctual lights (returned) and, in `from_emitters`,
+// from one sampled emissive triangle (MIS-weighted against BSDF sampling).
+vec3 next_event(Hit hit, Bsdf b, vec3 v, inout uint rng, out vec3 from_emitters) {
   vec3 n = hit.shading;
   vec3 result = vec3(0.0);
+  from_emitters = vec3(0.0);
   uint light_count = scene_light_count();
   for (uint i = 0u; i < light_count; ++i) {
     SceneLight light = scene_lights[i];
@@ -269,7 +278,7 @@ vec3 next_event(Hit hit, Bsdf b, vec3 v, inout uint rng) {
           vec3 a = abs(p);
           float end_eps = 1e-5 + 4e-6 * max(a.x, max(a.y, a.z));
           if (visible(from, l, max(distance(from, p) - 2.0 * end_eps, 0.0), rng)) {
-            result += f * (mis_power(pdf_light, bsdf_pdf(b, n, v, l)) / pdf_light);
+            from_emitters = f * (mis_power(pdf_light, bsdf_pdf(b, n, v, l)) / pdf_light);
           }
         }
       }
@@ -291,6 +300,7 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
   vec3 origin = frame.camera_position.xyz - pc.origin.xyz;
   vec3 throughput = vec3(1.0);
   float previous_pdf = 0.0;  // BSDF density of the direction that led here
+  bool deferred = (pc.flags & FLAG_DEFERRED_LAYERS) != 0u;
 
   for (uint depth = 0u;; ++depth) {
     g_filter_seed = pcg_hash(rng);
@@ -308,14 +318,28 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
         weight = mis_power(previous_pdf, pdf_light);
       }
       vec3 contribution = throughput * le * weight;
-      if (depth <= 1u) direct += contribution; else indirect += contribution;
+      if (!deferred) {
+        if (depth <= 1u) direct += contribution; else indirect += contribution;
+      } else if (depth == 0u) {
+        direct += contribution;
+      } else if (depth < pc.max_depth) {
+        indirect += contribution;
+      }
     }
     if (depth >= pc.max_depth) break;
 
     vec3 v = -dir;
     Bsdf b = make_bsdf(hit.material, hit.shading, v);
-    vec3 light = throughput * next_event(hit, b, v, rng);
-    if (depth == 0u) direct += light; else indirect += light;
+    vec3 emitter_light;
+    vec3 light = throughput * next_event(hit, b, v, rng, emitter_light);
+    emitter_light *= throughput;
+    if (!deferred) {
+      light += emitter_light;
+      if (depth == 0u) direct += light; else indirect += light;
+    } else {
+      if (depth == 0u) direct += light; else indirect += light;
+      if (depth + 1u < pc.max_depth) indirect += emitter_light;
+    }
 
     vec3 l = bsdf_sample(b, hit.shading, v, rng);
     float pdf = bsdf_pdf(b, hit.shading, v, l);

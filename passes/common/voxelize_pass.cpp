@@ -48,8 +48,8 @@ struct VoxelClearPush {
   uint32_t words;
 };
 
-constexpr uint32_t kHdrWords = 8;
-constexpr uint32_t kHdrWordsWithEmission = 14;
+constexpr uint32_t kHdrWords = 9;
+constexpr uint32_t kHdrWordsWithEmission = 15;
 constexpr uint32_t kRgba8Words = 3;
 
 bool is_power_of_two(uint32_t v) {
@@ -490,7 +490,7 @@ void register_voxelize(graph::Registry& registry) {
        graph::kStageCompute,
        {VK_FORMAT_R16G16B16A16_SFLOAT},
        false,
-       "xyz: averaged world normal (length <= 1, zero where faces cancel), w: 1 occupied"},
+       "xyz: averaged world normal (length <= 1, zero where faces cancel), w: 1 + d/4 where occupied (d: surface plane offset from the centre along the normal, voxels; lib/voxel_normal.glsl), 0 empty"},
       {"emission",
        graph::kinds(ResourceKind::Clipmap),
        Access::StorageReadWrite,
@@ -504,7 +504,7 @@ void register_voxelize(graph::Registry& registry) {
        draw_and_resolve,
        {},
        false,
-       "accumulation records (56 bytes per voxel with emission, 32 without, 12 for "
+       "accumulation records (60 bytes per voxel with emission, 36 without, 12 for "
        "average_rgba8); R^3 records voxelize a level in one go, fewer split it"},
   };
   info.params = {

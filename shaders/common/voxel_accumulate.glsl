@@ -8,7 +8,8 @@
 // Integer addition is associative, so the sums, and the resolved voxels, are the same in every
 // run whatever order the fragments come in. Words:
 //   0 count | 1-3 albedo rgb x 4096 | 4 alpha x 4096 | 5-7 normal xyz x 4096 (two's complement)
-//   | 8-13 emission rgb as 64-bit fixed point x 2^24 (low word, high word per channel; only
+//   | 8 surface plane offset x 4096 (two's complement; voxels, along the writer's normal)
+//   | 9-14 emission rgb as 64-bit fixed point x 2^24 (low word, high word per channel; only
 //   with VOXEL_HAS_EMISSION).
 // Overflow budget per voxel: 2^32 / 4096 = 1 048 576 writers of albedo or alpha 1.0;
 // 2^31 / 4096 = 524 288 writers of a unit normal component; 2^64 / (65504 x 2^24) ≈ 16.8
@@ -34,8 +35,8 @@ layout(std430, set = 0, binding = VOXEL_SCRATCH_BINDING) coherent buffer VoxelSc
 
 const float VOXEL_UNIT_SCALE = 4096.0;
 const float VOXEL_EMISSION_SCALE = 16777216.0;  // 2^24
-const uint VOXEL_HDR_WORDS = 8u;
-const uint VOXEL_HDR_WORDS_WITH_EMISSION = 14u;
+const uint VOXEL_HDR_WORDS = 9u;
+const uint VOXEL_HDR_WORDS_WITH_EMISSION = 15u;
 const uint VOXEL_RGBA8_WORDS = 3u;
 const int VOXEL_CAS_MAX_TRIES = 4096;
 
@@ -56,7 +57,10 @@ float voxel_read_fixed64(uint low_word) {
          VOXEL_EMISSION_SCALE;
 }
 
-void voxel_accumulate_hdr(uint base, vec3 albedo, float alpha, vec3 normal, vec3 emission) {
+// plane_offset: signed distance (voxels) from the voxel centre to the writer's surface plane,
+// measured along `normal`.
+void voxel_accumulate_hdr(uint base, vec3 albedo, float alpha, vec3 normal, float plane_offset,
+                          vec3 emission) {
   uvec3 a = uvec3(round(clamp(albedo, 0.0, 1.0) * VOXEL_UNIT_SCALE));
   ivec3 n = ivec3(round(clamp(normal, -1.0, 1.0) * VOXEL_UNIT_SCALE));
   atomicAdd(voxel_scratch[base], 1u);
@@ -67,10 +71,12 @@ void voxel_accumulate_hdr(uint base, vec3 albedo, float alpha, vec3 normal, vec3
   atomicAdd(voxel_scratch[base + 5u], uint(n.x));
   atomicAdd(voxel_scratch[base + 6u], uint(n.y));
   atomicAdd(voxel_scratch[base + 7u], uint(n.z));
+  atomicAdd(voxel_scratch[base + 8u],
+            uint(int(round(clamp(plane_offset, -2.0, 2.0) * VOXEL_UNIT_SCALE))));
 #ifdef VOXEL_HAS_EMISSION
-  voxel_add_fixed64(base + 8u, emission.r);
-  voxel_add_fixed64(base + 10u, emission.g);
-  voxel_add_fixed64(base + 12u, emission.b);
+  voxel_add_fixed64(base + 9u, emission.r);
+  voxel_add_fixed64(base + 11u, emission.g);
+  voxel_add_fixed64(base + 13u, emission.b);
 #endif
 }
 

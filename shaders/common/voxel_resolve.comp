@@ -4,6 +4,7 @@
 // next box starts from zero.
 
 #include "lib/common.glsl"
+#include "lib/voxel_normal.glsl"
 #include "common/voxel_accumulate.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
@@ -50,10 +51,11 @@ void main() {
                   int(voxel_scratch[base + 7u])) * scale;
     // An average of unit vectors is at most unit length; rounding may push it a hair over.
     float len2 = dot(n, n);
-    normal = vec4(len2 > 1.0 ? n * inversesqrt(len2) : n, 1.0);
+    float plane_offset = float(int(voxel_scratch[base + 8u])) * scale;
+    normal = vec4(len2 > 1.0 ? n * inversesqrt(len2) : n, voxel_encode_plane_offset(plane_offset));
 #ifdef VOXEL_HAS_EMISSION
-    emission.rgb = vec3(voxel_read_fixed64(base + 8u), voxel_read_fixed64(base + 10u),
-                        voxel_read_fixed64(base + 12u)) / float(count);
+    emission.rgb = vec3(voxel_read_fixed64(base + 9u), voxel_read_fixed64(base + 11u),
+                        voxel_read_fixed64(base + 13u)) / float(count);
 #endif
   }
 #endif

@@ -74,7 +74,9 @@ void store(ivec3 voxel) {
   voxel_average_rgba8(base + 2u, emission);
 #endif
 #else
-  voxel_accumulate_hdr(base, albedo, m.base_color.a, n, emission);
+  // The triangle's plane relative to this voxel's centre, along the shading normal (voxels).
+  float plane_offset = -dot(tri_plane.xyz, vec3(voxel) + 0.5 - tri_v0) * dot(n, tri_plane.xyz);
+  voxel_accumulate_hdr(base, albedo, m.base_color.a, n, plane_offset, emission);
 #endif
 }
 

@@ -6,6 +6,7 @@
 // voxel's emission (§2.3). One invocation per texel of the stacked clipmap image.
 #include "lib/voxel_clipmap.glsl"
 #include "lib/common.glsl"
+#include "lib/voxel_normal.glsl"
 #include "lib/scene.glsl"
 #include "lib/shadow_data.glsl"
 #include "dvs/voxel_volume.glsl"
@@ -116,8 +117,9 @@ void main() {
   bool occupied = albedo.a > 0.0 || normal.w > 0.0;
   if (occupied && voxel_level_valid(level)) {
     float size = voxel_size(level);
-    vec3 p = dvs_texel_center(texel, level);
     vec3 n = safe_normalize(normal.xyz, vec3(0.0));
+    // Lit on its average surface plane, not at its centre (lib/voxel_normal.glsl).
+    vec3 p = dvs_texel_center(texel, level) + n * (voxel_plane_offset(normal) * size);
     vec3 irradiance = vec3(0.0);
     uint light_count = scene_light_count();
     for (uint i = 0u; i < light_count; ++i) {

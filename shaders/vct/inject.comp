@@ -2,12 +2,14 @@
 #extension GL_GOOGLE_include_directive : require
 // vct.inject: direct light into the radiance clipmap. For every occupied voxel of every level:
 //   L_out = albedo / pi * sum_lights(E_light * cos * visibility) + emission
-// the outgoing Lambert radiance of the voxel (isotropic), a = opacity (albedo alpha). The
-// shadow maps decide visibility; cos uses the voxel's averaged normal. A voxel whose normal
+// the outgoing Lambert radiance of the voxel (isotropic), a = opacity (albedo alpha), with the
+// light evaluated on the voxel's average surface plane, not at its centre. The shadow maps
+// decide visibility; cos uses the voxel's averaged normal. A voxel whose normal
 // is missing or whose faces cancelled (|n| < NORMAL_MIN_LENGTH) is treated as facing each
 // light (cos = 1): a thin wall lit from one side glows rather than going black, and the
 // shadow map still decides whether light reaches it. Output is sanitized HDR.
 #include "lib/common.glsl"
+#include "lib/voxel_normal.glsl"
 #include "lib/scene.glsl"
 #include "lib/shadow_data.glsl"
 #define VOXEL_CLIPMAP_SET 0
@@ -92,9 +94,11 @@ void main() {
   bool has_normal = n_len >= NORMAL_MIN_LENGTH;
   vec3 n = has_normal ? n_raw / n_len : vec3(0.0);
 
-  // Voxel centre, world space (anchor-relative arithmetic first for precision).
+  // The voxel's surface: its centre moved onto the average surface plane (lib/voxel_normal.glsl),
+  // world space (anchor-relative arithmetic first for precision).
   float size = voxel_size(level);
   vec3 relative = voxel_level_min(level) + (vec3(window) + 0.5) * size;
+  if (has_normal) relative += n * (voxel_plane_offset(normal_occupied) * size);
   vec3 p = relative + voxel_clipmap.anchor.xyz;
 
   vec3 irradiance = vec3(0.0);
@@ -126,7 +130,7 @@ void main() {
     if (attenuation <= 0.0 || cos_theta <= 0.0) continue;
     float visibility = 1.0;
 #if HAS_SHADOWS
-    // Look up from in front of the surface: the voxel centre may lie behind it.
+    // Look up from in front of the surface, clear of the shadow map's depth bias.
     vec3 facing = has_normal ? n : l;
     visibility = shadow_visibility(i, p + facing * (pc.normal_offset * size));
 #endif

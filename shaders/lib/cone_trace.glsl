@@ -141,7 +141,23 @@ struct VctCone {
   vec3 origin;     // anchor-relative
   vec3 direction;  // unit
   float tan_half_angle;
+  // The surface the cone leaves (its tangent plane): unit normal, or vec3(0) for none, and the
+  // origin's height above that plane in metres. Samples never reach below the plane.
+  vec3 receiver_normal;
+  float receiver_height;
 };
+
+// A cone from a point at `receiver_height` metres above a surface of unit normal n.
+VctCone vct_cone_from_surface(vec3 origin, vec3 direction, float tan_half_angle, vec3 n,
+                              float receiver_height) {
+  VctCone cone;
+  cone.origin = origin;
+  cone.direction = direction;
+  cone.tan_half_angle = tan_half_angle;
+  cone.receiver_normal = n;
+  cone.receiver_height = receiver_height;
+  return cone;
+}
 
 struct VctTraceSettings {
   float step_factor;     // beta: step length / cone diameter (0 < beta)
@@ -160,6 +176,18 @@ struct VctConeResult {
 // sample's opacity is corrected for the step length, 1 - (1 - a)^(step / voxel edge), and its
 // premultiplied colour scaled alike, so that the result does not depend on beta. Stops when
 // opaque, past max_distance or when the cone leaves the coarsest level.
+//
+// The receiver's own surface: a sample at height h above the receiver's tangent plane, taken at
+// voxel edge D, mixes in every voxel whose centre is within D of it (trilinear), and the voxels
+// holding the surface have their centres up to D/2 above the plane. With D > 2h/3 a cone would
+// gather the surface it leaves (its radiance and its opacity), at every level of detail, since
+// h and D both grow linearly along the cone: the self-illumination that made wide cones and
+// fine volumes too bright (docs/vct.md, "Cones and the receiver's own surface"). So the level
+// of detail is capped where the coarser of the two interpolated levels stays within 2h/3, and
+// samples that even the finest available level cannot separate from the plane are lifted along
+// the normal until it can.
+// The step follows the voxel actually sampled, so a capped cone takes shorter steps instead of
+// stepping over thin walls.
 VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
   VctConeResult result;
   result.radiance = vec3(0.0);
@@ -167,6 +195,8 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
   result.occlusion = 0.0;
   float tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
   float base_size = voxel_size(0);
+  bool has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
+  float rise = has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
   float t = max(s.start_distance, 0.0);
   for (int i = 0; i < VCT_MAX_STEPS; ++i) {
     if (result.opacity >= VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
@@ -174,11 +204,21 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     int finest = voxel_finest_level(p, 1.0);
     if (finest < 0) break;  // left the volume
     float diameter = max(2.0 * t * tan_half, base_size);
-    float lod = clamp(log2(diameter / base_size), float(finest), vct_max_lod());
+    float lod = log2(diameter / base_size);
+    float height = cone.receiver_height + t * rise;
+    if (has_receiver) lod = min(lod, log2(max(height, 1e-6 * base_size) / (3.0 * base_size)));
+    lod = clamp(lod, float(finest), vct_max_lod());
     float voxel = base_size * exp2(lod);  // edge of the voxels actually sampled
     // Each sample stands for the segment [t, t + step]; the last one ends at max_distance.
-    float step_length = max(s.step_factor * max(diameter, voxel), 1e-2 * base_size);
+    float step_length = max(s.step_factor * voxel, 1e-2 * base_size);
     step_length = min(step_length, s.max_distance - t);
+    float coarse_voxel = base_size * exp2(ceil(lod));
+    if (has_receiver && coarse_voxel > (2.0 / 3.0) * height) {
+      // Too close to the plane for the finest level present: sample straight above, where the
+      // receiver's voxels no longer weigh in. Walls standing on the plane reach up there too,
+      // so the cone still stops at them (skipping such samples let cones escape through them).
+      p += cone.receiver_normal * (1.5 * coarse_voxel - height);
+    }
     vec4 v = vct_sample(p, cone.direction, lod);
     float a = clamp(v.a, 0.0, 1.0);
     float ratio = step_length / voxel;
@@ -239,9 +279,10 @@ void vct_diffuse_cone(int index, int count, out vec3 direction, out float weight
   tan_half_angle = min(sin_half / max(cos_half, 1e-4), VCT_MAX_TAN_HALF_ANGLE);
 }
 
-// Irradiance E (W/m^2) at anchor-relative p with unit normal n from `count` diffuse cones, and
-// the ambient-occlusion visibility (1 = open) in `visibility`. The cones start `normal_offset`
-// (metres) off the surface. Outgoing diffuse radiance is c_diff / pi * E.
+// Irradiance E (W/m^2) at anchor-relative p, a point of a surface with unit normal n, from
+// `count` diffuse cones, and the ambient-occlusion visibility (1 = open) in `visibility`. The
+// cones start `normal_offset` (metres) off the surface. Outgoing diffuse radiance is
+// c_diff / pi * E.
 vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float normal_offset, VctTraceSettings s,
                             out float visibility) {
   vec3 t, b;
@@ -254,10 +295,8 @@ vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float normal_offset, VctT
     vec3 d;
     float weight, tan_half;
     vct_diffuse_cone(i, count, d, weight, tan_half);
-    VctCone cone;
-    cone.origin = origin;
-    cone.direction = normalize(t * d.x + b * d.y + n * d.z);
-    cone.tan_half_angle = tan_half;
+    VctCone cone = vct_cone_from_surface(origin, normalize(t * d.x + b * d.y + n * d.z), tan_half,
+                                         n, normal_offset);
     VctConeResult r = vct_trace_cone(cone, s);
     irradiance += weight * r.radiance;
     occlusion += weight * r.occlusion;

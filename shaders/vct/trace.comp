@@ -94,10 +94,8 @@ float light_visibility(vec3 world, vec3 p, vec3 n, float voxel, VctTraceSettings
     l = to_light / distance_to_light;
   }
   if (dot(n, l) <= 0.0) return 0.0;
-  VctCone cone;
-  cone.origin = p + n * (pc.normal_offset * voxel);
-  cone.direction = l;
-  cone.tan_half_angle = pc.shadow_tan_half_angle;
+  float offset = pc.normal_offset * voxel;
+  VctCone cone = vct_cone_from_surface(p + n * offset, l, pc.shadow_tan_half_angle, n, offset);
   s.max_distance = min(s.max_distance, distance_to_light - voxel);
   return clamp(1.0 - vct_trace_cone(cone, s).opacity, 0.0, 1.0);
 }
@@ -147,10 +145,9 @@ void main() {
   vec3 r = reflect(-v, g.normal);
   // Shading normals can reflect below the surface: lift the cone back over the horizon.
   r = safe_normalize(r + g.normal * max(0.0, 0.02 - dot(r, g.normal)), g.normal);
-  VctCone cone;
-  cone.origin = p + g.normal * (pc.normal_offset * voxel);
-  cone.direction = r;
-  cone.tan_half_angle = vct_specular_tan_half_angle(g.roughness);
+  float offset = pc.normal_offset * voxel;
+  VctCone cone = vct_cone_from_surface(p + g.normal * offset, r,
+                                       vct_specular_tan_half_angle(g.roughness), g.normal, offset);
   VctConeResult traced = vct_trace_cone(cone, s);
   vec3 f0 = mix(vec3(0.04), g.base_color, g.metallic);
   float n_dot_v = clamp(dot(g.normal, v), 0.0, 1.0);

@@ -38,10 +38,8 @@ void main() {
   s.start_distance = pc.start_distance;
   s.ao_falloff = pc.ao_falloff;
   if (pc.single_cone != 0) {
-    VctCone cone;
-    cone.origin = p;
-    cone.direction = d;
-    cone.tan_half_angle = pc.tan_half_angle;
+    // A free cone in a medium: no receiver surface.
+    VctCone cone = vct_cone_from_surface(p, d, pc.tan_half_angle, vec3(0.0), 0.0);
     VctConeResult r = vct_trace_cone(cone, s);
     results[i] = vec4(r.radiance, 1.0 - r.opacity);
   } else {

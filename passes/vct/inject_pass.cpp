@@ -142,12 +142,12 @@ void register_inject(graph::Registry& registry) {
       {"shadows", graph::ParamType::Bool, 1.0, 0.0, 1.0, {}, "test the shadow maps", true},
       {"normal_offset",
        graph::ParamType::Float,
-       1.0,
+       0.0,
        0.0,
        4.0,
        {},
-       "offset of the shadow lookup from the voxel centre along its normal (towards the light "
-       "for normal-less voxels), in voxels",
+       "offset of the shadow lookup from the voxel's surface point along its normal (towards "
+       "the light for normal-less voxels), in voxels; at least two shadow-map texels",
        true},
   };
   registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });

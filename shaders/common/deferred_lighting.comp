@@ -43,12 +43,8 @@ float shadow_visibility(uint light_index, vec3 p, vec3 n, float distance_to_ligh
   ShadowLight s = shadow_lights[light_index];
   uint faces = uint(s.info.x + 0.5);
   if (faces == 0u) return 1.0;
-  float texel_world = s.info.z > 0.5 ? s.info.y * distance_to_light : s.info.y;
-  // Never offset by less than a few float32 steps of the world position: far from the origin
-  // that spacing (|p| * 2^-23) exceeds a texel and would make every surface shadow itself.
-  vec3 a = abs(p);
-  float position_step = max(a.x, max(a.y, a.z)) * 1.2e-7;
-  vec3 biased = p + n * max(pc.normal_bias * texel_world, 8.0 * position_step);
+  float texel_world = shadow_texel_world(s, distance_to_light);
+  vec3 biased = p + n * max(pc.normal_bias * texel_world, shadow_min_offset(p));
   vec3 relative = biased - s.origin.xyz;
   uint face = faces == 6u ? shadow_cube_face(relative) : 0u;
   vec4 clip = s.view_proj[face] * vec4(relative, 1.0);

@@ -8,8 +8,10 @@
 //   Every filtered volume is a clipmap with the addressing of lib/voxel_clipmap.glsl (same R,
 //   L, toroidal origin) and a full mip chain: mip m holds, per level l, R>>m voxels per edge at
 //   z in [l*(R>>m), (l+1)*(R>>m)). Texel m of world voxel w is (w >> m) mod (R >> m).
-//   rgb = PREMULTIPLIED outgoing radiance (radiance x opacity), a = opacity of one voxel length
-//   at that level and mip. Mip m of level l is the filter of mip m-1; mip 0 of level l > 0 is,
+//   The optical-depth form of lib/vct_volume_encoding.glsl: a = optical depth tau of one voxel
+//   length at that level and mip, rgb = radiance x tau / VCT_MAX_OPTICAL_DEPTH. (The filter's
+//   own arithmetic is in premultiplied radiance and opacity; see that file for why.)
+//   Mip m of level l is the filter of mip m-1; mip 0 of level l > 0 is,
 //   where level l-1 covers it, the filter of level l-1's mip 0 (so the levels agree), and
 //   elsewhere the injected radiance of level l.
 //   Isotropic mode (VCT_ANISOTROPIC 0): one volume, the box filter of the 8 children.
@@ -30,12 +32,14 @@
 //   where the device has it.
 //
 // API
-//   vct_sample(p, dir, lod)            filtered premultiplied radiance + opacity at a point
+//   vct_sample(p, dir, lod)            filtered volume value (stored form) at a point
 //   vct_trace_cone(cone, settings)     front-to-back accumulation along one cone
 //   vct_diffuse_cone(i, n, ...)        the i-th of n diffuse cones (tangent space) + weight
 //   vct_diffuse_irradiance(...)        irradiance E over the hemisphere of a normal, and AO
 //   vct_specular_tan_half_angle(r)     cone aperture for a GGX perceptual roughness
 // Positions are anchor-relative (voxel_relative(world)); distances in metres.
+
+#include "lib/vct_volume_encoding.glsl"
 
 #ifndef VCT_VOLUME_SET
 #define VCT_VOLUME_SET 0
@@ -123,7 +127,7 @@ float vct_max_lod() {
   return float(voxel_level_count() - 1) + log2(float(voxel_resolution()));
 }
 
-// Filtered premultiplied radiance and opacity at p for a cone travelling along dir, at a
+// Filtered value (stored form, see above) at p for a cone travelling along dir, at a
 // fractional level of detail (quadrilinear: trilinear in space, linear between lods). Levels
 // finer than the finest one containing p are replaced by it. vec4(0) outside the volume.
 vec4 vct_sample(vec3 p, vec3 dir, float lod) {
@@ -173,8 +177,9 @@ struct VctConeResult {
 };
 
 // Front-to-back accumulation along one cone (seed 001 section 4, Crassin): at each step the
-// sample's opacity is corrected for the step length, 1 - (1 - a)^(step / voxel edge), and its
-// premultiplied colour scaled alike, so that the result does not depend on beta. Stops when
+// sample's opacity over the step is 1 - exp(-tau * step / voxel edge), tau the interpolated
+// optical depth of one voxel length, and its radiance the interpolated opacity-weighted mean, so
+// that the result does not depend on beta. Stops when
 // opaque, past max_distance or when the cone leaves the coarsest level.
 //
 // The receiver's own surface: a sample at height h above the receiver's tangent plane, taken at
@@ -219,13 +224,13 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
       // so the cone still stops at them (skipping such samples let cones escape through them).
       p += cone.receiver_normal * (1.5 * coarse_voxel - height);
     }
+    // Interpolated optical depth over the step, and the opacity-weighted mean radiance.
     vec4 v = vct_sample(p, cone.direction, lod);
-    float a = clamp(v.a, 0.0, 1.0);
+    float tau = max(v.a, 0.0);
     float ratio = step_length / voxel;
-    float corrected = 1.0 - pow(1.0 - min(a, 0.999999), ratio);
-    if (a >= 0.999999) corrected = 1.0;
-    vec3 colour = a > 1e-6 ? v.rgb * (corrected / a) : v.rgb * ratio;
-    colour = max(colour, vec3(0.0));
+    float corrected = 1.0 - exp(-tau * ratio);
+    vec3 scaled = max(v.rgb, vec3(0.0)) * VCT_MAX_OPTICAL_DEPTH;  // radiance x tau
+    vec3 colour = tau > 1e-6 ? scaled * (corrected / tau) : scaled * ratio;
     result.radiance += (1.0 - result.opacity) * colour;
     float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * diameter / base_size);
     result.occlusion += (1.0 - result.occlusion) * corrected * falloff;

@@ -8,8 +8,10 @@
 //   STAGE_MIP: mip m of every level from mip m-1 of the same level (texel t <- 2t + {0,1}^3).
 // Isotropic: box filter of the 8 children. Anisotropic (ANISOTROPIC=1): per direction, the
 // front-to-back composite of each child pair along the axis, averaged over the 4 columns.
-// NaN/Inf and out-of-range values are scrubbed when read.
+// NaN/Inf and out-of-range values are scrubbed when read. The filter works on premultiplied
+// radiance and opacity; what it stores is the optical-depth form of lib/vct_volume_encoding.glsl.
 #include "lib/common.glsl"
+#include "lib/vct_volume_encoding.glsl"
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
 #include "lib/voxel_clipmap.glsl"
@@ -54,6 +56,12 @@ vec4 scrub(vec4 v) {
   return vec4(sanitize_radiance(v.rgb), a);
 }
 
+// A stored value (lib/vct_volume_encoding.glsl) with NaN/Inf removed, depth within range.
+vec4 scrub_stored(vec4 v) {
+  float tau = isnan(v.a) || isinf(v.a) ? 0.0 : clamp(v.a, 0.0, VCT_MAX_OPTICAL_DEPTH);
+  return vec4(sanitize_radiance(v.rgb), tau);
+}
+
 vec4 load_src(int volume, ivec3 texel) {
   vec4 v;
 #if ANISOTROPIC
@@ -68,11 +76,11 @@ vec4 load_src(int volume, ivec3 texel) {
 #else
   v = imageLoad(src0, texel);
 #endif
-  return scrub(v);
+  return scrub(vct_decode_volume(scrub_stored(v)));
 }
 
 void store_dst(int volume, ivec3 texel, vec4 v) {
-  v = scrub(v);
+  v = vct_encode_volume(scrub(v));
 #if ANISOTROPIC
   switch (volume) {
     case 0: imageStore(dst0, texel, v); break;

@@ -47,13 +47,16 @@ layout(push_constant) uniform Push {
 } pc;
 
 #if HAS_SHADOWS
-// 1 when the shadow map of light `index` sees p (2x2 hardware PCF of one compare lookup).
-float shadow_visibility(uint index, vec3 p) {
+// 1 when the shadow map of light `index` sees the surface point p (2x2 hardware PCF of one
+// compare lookup). The lookup moves off the surface along `facing` by `offset` metres, or by two
+// shadow-map texels or the float32 guard where those are larger.
+float shadow_visibility(uint index, vec3 p, vec3 facing, float offset, float distance_to_light) {
   if (pc.shadows_enabled == 0u || index >= pc.shadow_slots) return 1.0;
   ShadowLight s = shadow_lights[index];
   uint faces = uint(s.info.x + 0.5);
   if (faces == 0u) return 1.0;
-  vec3 relative = p - s.origin.xyz;
+  offset = max(offset, max(2.0 * shadow_texel_world(s, distance_to_light), shadow_min_offset(p)));
+  vec3 relative = p + facing * offset - s.origin.xyz;
   uint face = faces == 6u ? shadow_cube_face(relative) : 0u;
   vec4 clip = s.view_proj[face] * vec4(relative, 1.0);
   if (clip.w <= 0.0) return 1.0;
@@ -107,6 +110,7 @@ void main() {
     SceneLight light = scene_lights[i];
     vec3 l;
     float attenuation = 1.0;
+    float distance_to_light = 0.0;  // unused by orthographic (directional) maps
     if (light.type == SCENE_LIGHT_DIRECTIONAL) {
       l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
     } else {
@@ -114,6 +118,7 @@ void main() {
       // A light inside or next to the voxel must not give 1/0: clamp at a quarter voxel.
       float d2 = max(dot(to_light, to_light), max(0.0625 * size * size, 1e-8));
       float d = sqrt(d2);
+      distance_to_light = d;
       l = to_light / d;
       attenuation = 1.0 / d2;
       if (light.range > 0.0) {
@@ -130,9 +135,11 @@ void main() {
     if (attenuation <= 0.0 || cos_theta <= 0.0) continue;
     float visibility = 1.0;
 #if HAS_SHADOWS
-    // Look up from in front of the surface, clear of the shadow map's depth bias.
+    // Look up from just in front of the surface: p lies on the voxel's average surface plane,
+    // so a small offset suffices, and a larger one would look past occluders lying close in
+    // front of the surface (a lamp's shade just under a ceiling).
     vec3 facing = has_normal ? n : l;
-    visibility = shadow_visibility(i, p + facing * (pc.normal_offset * size));
+    visibility = shadow_visibility(i, p, facing, pc.normal_offset * size, distance_to_light);
 #endif
     irradiance += light.radiance * (attenuation * cos_theta * visibility);
   }

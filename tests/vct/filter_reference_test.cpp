@@ -50,6 +50,17 @@ glm::vec4 filter_children(const glm::vec4 c[8], int volume, bool anisotropic) {
   return sum / 4.0f;
 }
 
+// Premultiplied radiance and opacity from the filter's stored optical-depth form
+// (shaders/lib/vct_volume_encoding.glsl: a = tau, rgb = radiance x tau / 8).
+glm::vec4 decode_filtered(glm::vec4 stored) {
+  constexpr float kMaxOpticalDepth = 8.0f;
+  const float tau = std::max(stored.a, 0.0f);
+  if (!(tau > 1e-7f)) return glm::vec4(0.0f);
+  const float a = 1.0f - std::exp(-tau);
+  return glm::vec4(glm::max(glm::vec3(stored), glm::vec3(0.0f)) * (kMaxOpticalDepth / tau) * a,
+                   a);
+}
+
 // volumes[v][mip]: texels of the whole stacked image at that mip.
 using Reference = std::vector<std::vector<std::vector<glm::vec4>>>;
 
@@ -163,9 +174,10 @@ TEST_P(FilterReferenceTest, MatchesCpuReferenceOnEveryMip) {
       size_t bad = 0;
       for (size_t i = 0; i < gpu.size(); ++i) {
         for (int c = 0; c < 4; ++c) {
-          const float g = gpu[i][c];
+          const float g = decode_filtered(gpu[i])[c];
           const float r = ref[v][m][i][c];
-          // Half precision: 11-bit mantissa, plus rounding at every mip of the chain.
+          // Half precision: 11-bit mantissa, plus rounding at every mip of the chain; an opaque
+          // voxel is stored with opacity 1 - e^-8.
           const float tolerance = 2e-3f + 4e-3f * std::abs(r);
           if (!std::isfinite(g) || std::abs(g - r) > tolerance) ++bad;
           worst = std::max(worst, std::abs(g - r));

@@ -19,6 +19,11 @@ const SlotBinding* CompiledPass::binding(std::string_view slot) const {
   return nullptr;
 }
 
+bool skip_leaves_undefined(const SlotBinding& b) {
+  return !b.is_input && b.resource >= 0 && access_writes(b.spec->access) && !b.spec->scratch &&
+         !b.info.persistent;
+}
+
 int CompiledGraph::find_resource(std::string_view resource_name) const {
   for (size_t i = 0; i < resources.size(); ++i) {
     if (resources[i].info.name == resource_name) return static_cast<int>(i);
@@ -92,6 +97,7 @@ class Compiler {
     resolve_resources();
     resolve_passes();
     apply_pass_overrides();
+    check_skipping_passes_write_persistent();
     check_outputs_declared();
     check_reads_have_writers();
     check_cycles();
@@ -100,6 +106,8 @@ class Compiler {
     check_outputs_written();
     diags_.throw_if_any();
     schedule();
+    check_transients_written_first();
+    diags_.throw_if_any();
     plan_resources(graph_, options_);
     return std::move(graph_);
   }
@@ -654,6 +662,53 @@ class Compiler {
             override_loc(key, text), {}, key,
             "unknown --set key '" + key + "' (expected a graph parameter or 'pass.parameter')",
             did_you_mean(key, candidates));
+      }
+    }
+  }
+
+  // ---- pass type rules -------------------------------------------------------------------
+  // A pass that skips a frame keeps what it wrote in an earlier one, which only a persistent
+  // resource still holds.
+  void check_skipping_passes_write_persistent() {
+    for (const PassWork& w : work_) {
+      if (!w.usable || !w.info->may_skip) continue;
+      for (const SlotBinding& b : w.bindings) {
+        if (!skip_leaves_undefined(b)) continue;
+        const CompiledResource& r = graph_.resources[static_cast<size_t>(b.resource)];
+        diags_.error(b.loc, w.desc->name, "out." + b.slot,
+                     "pass type '" + w.desc->type +
+                         "' may skip frames whose inputs did not change and keep what it wrote "
+                         "earlier, but resource '" +
+                         r.info.name + "' (line " + std::to_string(r.loc.line) +
+                         ") is transient, so it would be undefined then: mark it "
+                         "\"persistent\": true");
+      }
+    }
+  }
+
+  // A transient holds nothing when a frame starts, so the first pass using it must write it;
+  // reading it there would silently carry it from the previous frame.
+  void check_transients_written_first() {
+    std::vector<bool> used(graph_.resources.size(), false);
+    for (const CompiledPass& p : graph_.passes) {
+      for (const SlotBinding& b : p.bindings) {
+        if (b.resource < 0 || used[static_cast<size_t>(b.resource)]) continue;
+        const CompiledResource& r = graph_.resources[static_cast<size_t>(b.resource)];
+        if (r.info.persistent) continue;
+        for (const SlotBinding& other : p.bindings) {
+          if (other.resource != b.resource || !binding_reads(other) || other.spec->scratch)
+            continue;
+          diags_.error(other.loc, p.name, (other.is_input ? "in." : "out.") + other.slot,
+                       "resource '" + r.info.name +
+                           "' is transient, so it holds nothing when the frame starts, but its "
+                           "first use here reads it (" +
+                           access_name(other.spec->access) +
+                           "): let an earlier pass write it, or mark it \"persistent\": true to "
+                           "keep it across frames");
+        }
+      }
+      for (const SlotBinding& b : p.bindings) {
+        if (b.resource >= 0) used[static_cast<size_t>(b.resource)] = true;
       }
     }
   }

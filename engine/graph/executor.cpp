@@ -27,6 +27,13 @@ bool same_description(const ResourceInfo& a, const ResourceInfo& b) {
          a.buffer_size == b.buffer_size;
 }
 
+// What a pass writes has a new version once it executed.
+void advance_versions(const CompiledPass& pass, std::vector<uint64_t>& versions) {
+  for (const SlotBinding& b : pass.bindings) {
+    if (!b.is_input && b.resource >= 0) ++versions[static_cast<size_t>(b.resource)];
+  }
+}
+
 float srgb_to_linear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
@@ -393,9 +400,42 @@ void Executor::record_initialisation(VkCommandBuffer cmd) {
   }
 }
 
+// Asked before anything is recorded. Each pass sees the versions the passes before it leave,
+// counted on a copy; execute() counts them for real.
+std::vector<std::string> Executor::skip_reasons() {
+  std::vector<std::string> reasons(passes_.size());
+  std::vector<uint64_t> versions = resource_versions_;
+  for (size_t s = 0; s < passes_.size(); ++s) {
+    LivePass& live = passes_[s];
+    const CompiledPass& pass = graph_.passes[s];
+    live.impl->resource_versions = &versions;
+    PassContext ctx(*live.impl);
+    reasons[s] = live.pass->skip_reason(ctx);
+    live.impl->resource_versions = &resource_versions_;
+    if (reasons[s].empty()) {
+      advance_versions(pass, versions);
+      continue;
+    }
+    const std::string what =
+        "pass '" + pass.name + "' (" + pass.type + ") reported a skip (\"" + reasons[s] + "\"), ";
+    if (!pass.type_info->may_skip) {
+      throw std::logic_error(what + "but its type does not declare may_skip");
+    }
+    for (const SlotBinding& b : pass.bindings) {
+      if (!skip_leaves_undefined(b)) continue;
+      throw std::logic_error(what + "but it writes the transient resource '" + b.info.name +
+                             "' (slot '" + b.slot +
+                             "'), which would be left undefined; a pass may skip only when "
+                             "everything it writes is persistent");
+    }
+  }
+  return reasons;
+}
+
 void Executor::render(const FrameInput& input) {
   if (!scene_) throw std::logic_error("Executor::render() called before build()");
   fill_frame(input);
+  const std::vector<std::string> skips = skip_reasons();
   gpu::check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -410,10 +450,9 @@ void Executor::render(const FrameInput& input) {
       LivePass& live = passes_[s];
       const CompiledPass& pass = graph_.passes[s];
       record_barriers(cmd_, pass.barriers);
-      PassTiming timing{pass.name, pass.type, 0.0, 0.0, {}};
+      PassTiming timing{pass.name, pass.type, 0.0, 0.0, skips[s]};
       PassContext ctx(*live.impl);
       const uint32_t begin_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      timing.skipped = live.pass->skip_reason(ctx);
       if (timing.skipped.empty()) {
         live.impl->cmd = cmd_;
         live.impl->executing = true;
@@ -430,10 +469,11 @@ void Executor::render(const FrameInput& input) {
                 .count();
         live.impl->executing = false;
         live.impl->params_changed = false;
+        advance_versions(pass, resource_versions_);
         for (const SlotBinding& b : pass.bindings) {
           if (b.is_input || b.resource < 0) continue;
           const size_t r = static_cast<size_t>(b.resource);
-          versions_by_name_[graph_.resources[r].info.name] = ++resource_versions_[r];
+          versions_by_name_[graph_.resources[r].info.name] = resource_versions_[r];
         }
       }
       const uint32_t end_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);

@@ -44,7 +44,9 @@ class Executor {
     bool geometry_changed = true;
   };
 
-  // Records one command buffer for the whole frame, submits it and waits for it.
+  // Records one command buffer for the whole frame, submits it and waits for it. Throws when a
+  // pass skips against the skip contract (its type does not declare may_skip, or it writes a
+  // transient resource), naming the pass and the resource.
   void render(const FrameInput& input);
 
   struct PassTiming {
@@ -86,6 +88,8 @@ class Executor {
   void record_barriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers);
   void fill_frame(const FrameInput& input);
   void run_setup(LivePass& live);
+  // Each pass's skip reason for this frame (empty: it runs), asked in schedule order.
+  std::vector<std::string> skip_reasons();
 
   gpu::Context& context_;
   gpu::ShaderCompiler& shaders_;

@@ -33,7 +33,7 @@ class GpuScene;
 namespace voxgi::graph {
 
 // Bumped whenever PassTypeInfo, Pass, PassContext or Registry change layout or meaning.
-inline constexpr uint32_t kPluginAbiVersion = 1;
+inline constexpr uint32_t kPluginAbiVersion = 2;
 
 enum class ParamType { Bool, Int, Float, Enum };
 // "bool", "int", "float" or "enum".
@@ -95,6 +95,10 @@ struct SlotSpec {
   std::vector<VkFormat> formats;  // empty: any format
   bool optional = false;
   std::string doc;
+  // Outputs only: working memory whose contents mean nothing after the pass. It may be
+  // transient even when the pass may skip or read-modify-writes it, so the pass must not rely
+  // on earlier contents unless the resource is persistent.
+  bool scratch = false;
 };
 
 struct PassTypeInfo {
@@ -103,6 +107,10 @@ struct PassTypeInfo {
   std::vector<SlotSpec> inputs;
   std::vector<SlotSpec> outputs;
   std::vector<ParamSpec> params;
+  // The pass may skip a frame whose inputs did not change (Pass::skip_reason), leaving what it
+  // writes as the previous frame left it; the compiler then requires every output it writes,
+  // scratch slots aside, to be persistent.
+  bool may_skip = false;
 };
 
 // What a slot is bound to, as compiled: sizes are resolved.
@@ -174,8 +182,10 @@ class Pass {
   virtual void setup(PassContext& ctx) { (void)ctx; }
   // Record commands into ctx.cmd().
   virtual void execute(PassContext& ctx) = 0;
-  // Non-empty: this frame can skip the pass (its outputs are persistent and its inputs did not
-  // change); the reason is reported by timings and `graph explain`.
+  // Non-empty: the pass skips this frame because its inputs did not change; the reason is
+  // reported by timings. Only types declaring may_skip may skip. Asked before anything of the
+  // frame is recorded, in schedule order, with resource versions as the passes before it leave
+  // them.
   virtual std::string skip_reason(const PassContext& ctx) const {
     (void)ctx;
     return {};

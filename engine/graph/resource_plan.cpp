@@ -152,12 +152,7 @@ void plan_lifetimes_and_usage(CompiledGraph& g) {
       if (b.resource < 0) continue;
       CompiledResource& r = g.resources[static_cast<size_t>(b.resource)];
       const int index = static_cast<int>(s);
-      if (r.first_pass < 0) {
-        r.first_pass = index;
-        // Transient contents read before being written in the frame come from the last frame.
-        const bool reads = b.is_input || b.spec->access == Access::StorageReadWrite;
-        r.carries_contents = r.info.persistent || reads;
-      }
+      if (r.first_pass < 0) r.first_pass = index;
       r.last_pass = std::max(r.last_pass, index);
       if (r.info.kind == ResourceKind::Buffer) {
         r.buffer_usage |= buffer_usage_for(b.spec->access);
@@ -168,7 +163,8 @@ void plan_lifetimes_and_usage(CompiledGraph& g) {
   }
   for (CompiledResource& r : g.resources) {
     if (r.first_pass < 0) continue;
-    if (r.info.persistent) r.carries_contents = true;
+    // The compiler makes sure a transient's first use writes it.
+    r.carries_contents = r.info.persistent;
     if (r.info.kind == ResourceKind::Buffer) {
       // Transfer destination: persistent buffers are cleared on creation.
       r.buffer_usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;

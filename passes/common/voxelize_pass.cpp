@@ -171,7 +171,7 @@ class VoxelizePass final : public graph::Pass {
   }
 
   std::string skip_reason(const graph::PassContext& ctx) const override {
-    if (!initialized_ || !incremental(ctx) || ctx.params_changed()) return {};
+    if (!initialized_ || ctx.params_changed()) return {};
     const std::vector<glm::ivec3> origins = target_origins(ctx);
     for (uint32_t l = 0; l < levels_; ++l) {
       if (origins[l] != origins_[l]) return {};
@@ -201,13 +201,12 @@ class VoxelizePass final : public graph::Pass {
     }
 
     const std::vector<glm::ivec3> origins = target_origins(ctx);
-    const bool keep = incremental(ctx);
     std::vector<VoxelBox> stale;
     std::vector<bool> full(levels_, false);
-    bool windows_moved = !info_written_ || !keep;  // a transient info buffer loses it
+    bool windows_moved = !info_written_;
     for (uint32_t l = 0; l < levels_; ++l) {
       const int level = static_cast<int>(l);
-      if (!keep || !valid_[l]) {
+      if (!valid_[l]) {
         full[l] = true;
         stale.push_back({level, glm::ivec3(0), glm::ivec3(static_cast<int>(resolution_))});
       } else if (origins[l] != origins_[l]) {
@@ -275,13 +274,6 @@ class VoxelizePass final : public graph::Pass {
   };
 
   double level_size(uint32_t level) const { return voxel_size_ * std::ldexp(1.0, int(level)); }
-
-  bool incremental(const graph::PassContext& ctx) const {
-    bool persistent = ctx.info("albedo").persistent && ctx.info("normal").persistent &&
-                      ctx.info("clipmap_info").persistent;
-    if (has_emission_) persistent = persistent && ctx.info("emission").persistent;
-    return persistent;
-  }
 
   bool follows_camera(const graph::PassContext& ctx) const {
     const std::string& center = ctx.choice("center");
@@ -505,7 +497,8 @@ void register_voxelize(graph::Registry& registry) {
        {},
        false,
        "accumulation records (56 bytes per voxel with emission, 32 without, 12 for "
-       "average_rgba8); R^3 records voxelize a level in one go, fewer split it"},
+       "average_rgba8); R^3 records voxelize a level in one go, fewer split it",
+       true},
   };
   info.params = {
       {"voxel_size",
@@ -545,6 +538,7 @@ void register_voxelize(graph::Registry& registry) {
        "what the windows centre on: auto = the scene for one level, the camera for several",
        false},
   };
+  info.may_skip = true;
   registry.add(std::move(info), [] { return std::make_unique<VoxelizePass>(); });
 }
 

@@ -79,8 +79,7 @@ class VoxelBouncePass final : public graph::Pass {
   // Every bounce derives from the direct light and the voxels: while those are unchanged the
   // previous result (persistent) is still the answer.
   std::string skip_reason(const graph::PassContext& ctx) const override {
-    if (!ctx.info("radiance").persistent || ctx.frame().first_frame || ctx.params_changed() ||
-        inputs_.changed(ctx)) {
+    if (ctx.frame().first_frame || ctx.params_changed() || inputs_.changed(ctx)) {
       return {};
     }
     return "direct light and voxels unchanged";
@@ -211,6 +210,7 @@ void register_voxel_bounce(graph::Registry& registry) {
        "distance skipped at the start of each cone, in voxels (self-occlusion)",
        true},
   };
+  info.may_skip = true;
   registry.add(std::move(info), [] { return std::make_unique<VoxelBouncePass>(); });
 }
 

@@ -73,8 +73,7 @@ class VoxelLightingPass final : public graph::Pass {
 
   std::string skip_reason(const graph::PassContext& ctx) const override {
     const graph::FrameInfo& frame = ctx.frame();
-    if (!outputs_persistent(ctx) || frame.first_frame || frame.lights_changed ||
-        ctx.params_changed() || inputs_.changed(ctx)) {
+    if (frame.first_frame || frame.lights_changed || ctx.params_changed() || inputs_.changed(ctx)) {
       return {};
     }
     return "voxels, lights and shadow maps unchanged";
@@ -143,10 +142,6 @@ class VoxelLightingPass final : public graph::Pass {
           "') is " + std::to_string(a.width) + "x" + std::to_string(a.height) + "x" +
           std::to_string(a.depth) + "; both must be the same clipmap layout");
     }
-  }
-
-  bool outputs_persistent(const graph::PassContext& ctx) const {
-    return ctx.info("radiance").persistent && (!has_direct_ || ctx.info("direct").persistent);
   }
 
   bool has_emission_ = false;
@@ -218,6 +213,7 @@ void register_voxel_lighting(graph::Registry& registry) {
        "voxel rays: most samples per ray (half a voxel apart)",
        true},
   };
+  info.may_skip = true;
   registry.add(std::move(info), [] { return std::make_unique<VoxelLightingPass>(); });
 }
 

@@ -164,6 +164,7 @@ void register_filter(graph::Registry& registry) {
                   "isotropic: one box-filtered volume; anisotropic: six directional volumes "
                   "(front-to-back along each axis), needs the six pos_x..neg_z outputs",
                   false}};
+  info.may_skip = true;
   registry.add(std::move(info), [] { return std::make_unique<FilterPass>(); });
 }
 

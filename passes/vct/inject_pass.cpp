@@ -150,6 +150,7 @@ void register_inject(graph::Registry& registry) {
        "for normal-less voxels), in voxels",
        true},
   };
+  info.may_skip = true;
   registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });
 }
 

@@ -123,7 +123,7 @@ class ComposePass : public Pass {
   std::unique_ptr<gpu::ComputePipeline> pipeline_;
 };
 
-Registry make_exec_registry() {
+Registry make_exec_registry(bool accumulate_may_skip = true) {
   Registry r;
   constexpr ResourceKinds buffer = test::kBuffer;
   constexpr ResourceKinds image = test::kImage2D;
@@ -135,6 +135,7 @@ Registry make_exec_registry() {
   PassTypeInfo acc;
   acc.type = "exec.accumulate";
   acc.outputs = {slot("acc", image, Access::StorageReadWrite, kStageCompute)};
+  acc.may_skip = accumulate_may_skip;
   r.add(acc, [] { return std::make_unique<AccumulatePass>(); });
   PassTypeInfo compose;
   compose.type = "exec.compose";
@@ -182,13 +183,28 @@ class ExecutorTest : public voxgi::test::GpuTest {
     GpuTest::TearDown();
   }
 
-  Executor& build(CompileOptions options = {}) {
+  Executor& build(CompileOptions options = {}) { return build(compile_exec_graph(options)); }
+
+  CompiledGraph compile_exec_graph(CompileOptions options = {}) {
     options.viewport_width = kSize;
     options.viewport_height = kSize;
-    const CompiledGraph graph = compile(parse_graph(kGraph, "exec.json"), registry_, options);
+    return compile(parse_graph(kGraph, "exec.json"), registry_, options);
+  }
+
+  Executor& build(const CompiledGraph& graph) {
     if (!executor_) executor_ = std::make_unique<Executor>(context(), *shaders_, registry_);
     executor_->build(graph, scene_, *gpu_scene_);
     return *executor_;
+  }
+
+  // The message of the exception render() throws, or "" when it throws none.
+  std::string render_error(Executor& executor) {
+    try {
+      executor.render({});
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return {};
   }
 
   // Red channel of texel i of the output.
@@ -247,6 +263,39 @@ TEST_F(ExecutorTest, SkippedPassIsReportedAndPersistentContentsStay) {
   const std::vector<float> third = render_and_read(executor);
   EXPECT_FLOAT_EQ(third[1], 1.0f);  // skipped, so not accumulated again
   EXPECT_EQ(executor.frame_index(), 3u);
+}
+
+TEST_F(ExecutorTest, RefusesASkipItsTypeDoesNotDeclare) {
+  registry_ = make_exec_registry(/*accumulate_may_skip=*/false);
+  Executor& executor = build();
+  render_and_read(executor);
+  const std::string error = render_error(executor);
+  EXPECT_NE(error.find("pass 'accumulate' (exec.accumulate) reported a skip (\"nothing "
+                       "changed\"), but its type does not declare may_skip"),
+            std::string::npos)
+      << error;
+}
+
+TEST_F(ExecutorTest, RefusesASkipThatLeavesATransientUndefined) {
+  // The compiler rejects such a graph; one put together otherwise still meets the executor.
+  CompiledGraph graph = compile_exec_graph();
+  const int history = graph.find_resource("history");
+  graph.resources[static_cast<size_t>(history)].info.persistent = false;
+  for (CompiledPass& pass : graph.passes) {
+    for (SlotBinding& b : pass.bindings) {
+      if (b.resource == history) b.info.persistent = false;
+    }
+  }
+  Executor& executor = build(graph);
+  render_and_read(executor);  // the first frame runs every pass
+  const std::string error = render_error(executor);
+  EXPECT_NE(error.find("pass 'accumulate' (exec.accumulate) reported a skip"), std::string::npos)
+      << error;
+  EXPECT_NE(error.find("writes the transient resource 'history' (slot 'acc')"), std::string::npos)
+      << error;
+  // Nothing of the refused frame was recorded: the next one with no skip renders cleanly.
+  EXPECT_NO_THROW(build());
+  render_and_read(*executor_);
 }
 
 TEST_F(ExecutorTest, ResourceVersionsCountExecutedWritersOnly) {

@@ -158,6 +158,8 @@ void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
   physical_.clear();
 
   graph_ = graph;
+  sync_ = std::make_unique<FrameSync>(graph_);
+  frame_barriers_ = {};
   scene_ = &scene;
   gpu_scene_ = &gpu_scene;
   scene::SceneFeatures features = scene.features();
@@ -400,8 +402,9 @@ void Executor::record_initialisation(VkCommandBuffer cmd) {
   }
 }
 
-// Asked before anything is recorded. Each pass sees the versions the passes before it leave,
-// counted on a copy; execute() counts them for real.
+// Asked before anything is recorded, so that the frame's barriers can leave out what skipped
+// passes would have written. Each pass sees the versions the passes before it leave, counted
+// on a copy; execute() counts them for real.
 std::vector<std::string> Executor::skip_reasons() {
   std::vector<std::string> reasons(passes_.size());
   std::vector<uint64_t> versions = resource_versions_;
@@ -436,6 +439,11 @@ void Executor::render(const FrameInput& input) {
   if (!scene_) throw std::logic_error("Executor::render() called before build()");
   fill_frame(input);
   const std::vector<std::string> skips = skip_reasons();
+  std::vector<bool> skipped(skips.size());
+  for (size_t s = 0; s < skips.size(); ++s) skipped[s] = !skips[s].empty();
+  // A frame that fails to record is not submitted: the tracked state goes back to before it.
+  const FrameSync sync_before = *sync_;
+  FrameBarriers barriers = sync_->plan(skipped);
   gpu::check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -445,11 +453,11 @@ void Executor::render(const FrameInput& input) {
   try {
     timestamps_->reset(cmd_);
     if (first_frame_) record_initialisation(cmd_);
-    record_barriers(cmd_, graph_.frame_start);
+    record_barriers(cmd_, barriers.frame_start);
     for (size_t s = 0; s < passes_.size(); ++s) {
       LivePass& live = passes_[s];
       const CompiledPass& pass = graph_.passes[s];
-      record_barriers(cmd_, pass.barriers);
+      record_barriers(cmd_, barriers.passes[s]);
       PassTiming timing{pass.name, pass.type, 0.0, 0.0, skips[s]};
       PassContext ctx(*live.impl);
       const uint32_t begin_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
@@ -480,9 +488,10 @@ void Executor::render(const FrameInput& input) {
       queries.emplace_back(begin_query, end_query);
       timings.push_back(std::move(timing));
     }
-    record_barriers(cmd_, graph_.frame_end);
+    record_barriers(cmd_, barriers.frame_end);
   } catch (...) {
     vkEndCommandBuffer(cmd_);
+    *sync_ = sync_before;
     throw;
   }
   gpu::check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
@@ -506,6 +515,7 @@ void Executor::render(const FrameInput& input) {
     }
   }
   timings_ = std::move(timings);
+  frame_barriers_ = std::move(barriers);
   for (Physical& phys : physical_) phys.fresh = false;
   first_frame_ = false;
   rendered_ = true;

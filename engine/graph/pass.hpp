@@ -185,7 +185,7 @@ class Pass {
   // Non-empty: the pass skips this frame because its inputs did not change; the reason is
   // reported by timings. Only types declaring may_skip may skip. Asked before anything of the
   // frame is recorded, in schedule order, with resource versions as the passes before it leave
-  // them.
+  // them, so that no barrier is recorded for what a skipped pass would have written.
   virtual std::string skip_reason(const PassContext& ctx) const {
     (void)ctx;
     return {};

@@ -197,6 +197,20 @@ class ExecutorTest : public voxgi::test::GpuTest {
     return *executor_;
   }
 
+  // Barriers of the executor's last frame on `resource`.
+  size_t barriers_on(Executor& executor, const std::string& resource) {
+    const int r = executor.compiled().find_resource(resource);
+    const FrameBarriers& frame = executor.frame_barriers();
+    size_t count = 0;
+    auto scan = [&](const std::vector<Barrier>& list) {
+      for (const Barrier& b : list) count += b.resource == r ? 1 : 0;
+    };
+    scan(frame.frame_start);
+    for (const std::vector<Barrier>& pass : frame.passes) scan(pass);
+    scan(frame.frame_end);
+    return count;
+  }
+
   // The message of the exception render() throws, or "" when it throws none.
   std::string render_error(Executor& executor) {
     try {
@@ -263,6 +277,22 @@ TEST_F(ExecutorTest, SkippedPassIsReportedAndPersistentContentsStay) {
   const std::vector<float> third = render_and_read(executor);
   EXPECT_FLOAT_EQ(third[1], 1.0f);  // skipped, so not accumulated again
   EXPECT_EQ(executor.frame_index(), 3u);
+}
+
+// A skipped pass gets no barriers, and neither does what it would have written: the frame after
+// accumulate's last run still makes that write visible to compose, the next touches history not
+// at all. Synchronisation validation checks both.
+TEST_F(ExecutorTest, SkippedPassRecordsNoBarrierForWhatItWouldWrite) {
+  Executor& executor = build();
+  render_and_read(executor);
+  const size_t every_pass = barrier_count(executor.frame_barriers());
+  EXPECT_EQ(every_pass, barrier_count(FrameSync(executor.compiled()).all_passes_frame()));
+  render_and_read(executor);
+  EXPECT_EQ(barriers_on(executor, "history"), 1u);
+  const std::vector<float> third = render_and_read(executor);
+  EXPECT_EQ(barriers_on(executor, "history"), 0u);
+  EXPECT_LT(barrier_count(executor.frame_barriers()), every_pass);
+  EXPECT_FLOAT_EQ(third[1], 1.0f);  // still the first frame's accumulation
 }
 
 TEST_F(ExecutorTest, RefusesASkipItsTypeDoesNotDeclare) {

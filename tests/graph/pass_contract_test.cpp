@@ -1,9 +1,11 @@
 // The compile-time side of the pass contract: a pass that may skip writes only persistent
-// resources, and a transient's first use writes it.
+// resources, a transient's first use writes it; and the barriers FrameSync plans for frames in
+// which passes skip.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
+#include "engine/graph/resource_plan.hpp"
 #include "tests/graph/test_passes.hpp"
 
 namespace voxgi::graph {
@@ -106,6 +108,117 @@ TEST(SkipContract, ATransientsFirstUseMustWriteIt) {
   // Persistent, the same graph carries the history from frame to frame.
   const CompiledGraph g = test::compile_text(history_graph(", \"persistent\": true"), registry());
   EXPECT_TRUE(g.resources[static_cast<size_t>(g.find_resource("history"))].carries_contents);
+}
+
+// ---- barriers of frames in which passes skip ------------------------------------------------
+
+const Barrier* find_barrier(const CompiledGraph& g, const std::vector<Barrier>& list,
+                            const std::string& resource) {
+  const int r = g.find_resource(resource);
+  for (const Barrier& b : list) {
+    if (b.resource == r) return &b;
+  }
+  return nullptr;
+}
+
+// Every barrier of a frame touching `resource`.
+std::vector<Barrier> barriers_on(const CompiledGraph& g, const FrameBarriers& frame,
+                                 const std::string& resource) {
+  std::vector<Barrier> found;
+  const int r = g.find_resource(resource);
+  auto scan = [&](const std::vector<Barrier>& list) {
+    for (const Barrier& b : list) {
+      if (b.resource == r) found.push_back(b);
+    }
+  };
+  scan(frame.frame_start);
+  for (const std::vector<Barrier>& pass : frame.passes) scan(pass);
+  scan(frame.frame_end);
+  return found;
+}
+
+bool same_barriers(const std::vector<Barrier>& a, const std::vector<Barrier>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i].resource != b[i].resource || a[i].base_mip != b[i].base_mip ||
+        a[i].mip_count != b[i].mip_count || a[i].old_layout != b[i].old_layout ||
+        a[i].new_layout != b[i].new_layout || a[i].src_stages != b[i].src_stages ||
+        a[i].dst_stages != b[i].dst_stages || a[i].src_access != b[i].src_access ||
+        a[i].dst_access != b[i].dst_access) {
+      return false;
+    }
+  }
+  return true;
+}
+
+size_t pass_index(const CompiledGraph& g, const std::string& name) {
+  for (size_t s = 0; s < g.passes.size(); ++s) {
+    if (g.passes[s].name == name) return s;
+  }
+  ADD_FAILURE() << "no pass " << name;
+  return 0;
+}
+
+TEST(FrameSync, AFrameOfAllPassesHasTheCompiledBarriers) {
+  const CompiledGraph g = test::compile_text(voxel_graph(", \"persistent\": true"), registry());
+  FrameSync sync(g);
+  const std::vector<bool> none(g.passes.size(), false);
+  for (int frame = 0; frame < 3; ++frame) {
+    const FrameBarriers planned = sync.plan(none);
+    EXPECT_TRUE(same_barriers(planned.frame_start, g.frame_start));
+    EXPECT_TRUE(same_barriers(planned.frame_end, g.frame_end));
+    for (size_t s = 0; s < g.passes.size(); ++s) {
+      EXPECT_TRUE(same_barriers(planned.passes[s], g.passes[s].barriers)) << g.passes[s].name;
+    }
+  }
+}
+
+TEST(FrameSync, WhatASkippedPassWouldWriteGetsNoBarrier) {
+  const CompiledGraph g = test::compile_text(voxel_graph(", \"persistent\": true"), registry());
+  // Every frame of all passes moves the volume to GENERAL for the write and back to
+  // SHADER_READ_ONLY for the reader.
+  ASSERT_NE(find_barrier(g, g.frame_start, "volume"), nullptr);
+  ASSERT_NE(find_barrier(g, g.find_pass("shade")->barriers, "volume"), nullptr);
+  FrameSync sync(g);
+  std::vector<bool> skipped(g.passes.size(), false);
+  skipped[pass_index(g, "voxels")] = true;
+  for (int frame = 0; frame < 2; ++frame) {
+    const FrameBarriers planned = sync.plan(skipped);
+    // The reader finds the volume where the last frame left it, written long before.
+    EXPECT_TRUE(barriers_on(g, planned, "volume").empty()) << "frame " << frame;
+    EXPECT_TRUE(barriers_on(g, planned, "scratch").empty()) << "frame " << frame;
+    EXPECT_TRUE(planned.passes[pass_index(g, "voxels")].empty());
+    EXPECT_LT(barrier_count(planned), barrier_count(sync.all_passes_frame()));
+  }
+  // When it runs again, the frame is the compiled one.
+  const FrameBarriers again = sync.plan(std::vector<bool>(g.passes.size(), false));
+  EXPECT_TRUE(same_barriers(again.frame_start, g.frame_start));
+  EXPECT_TRUE(same_barriers(again.passes[pass_index(g, "shade")], g.find_pass("shade")->barriers));
+}
+
+TEST(FrameSync, AFrameInWhichAPassSkipsEndsWhereEveryFrameEnds) {
+  // "history" is sampled before "accumulate" writes it in GENERAL, where every frame leaves it.
+  // When accumulate skips, the reader's transition is undone at the frame's end.
+  const CompiledGraph g = test::compile_text(test::graph_text(R"(
+    "history": { "type": "image2d", "format": "rgba16f", "size": 8, "persistent": true },)",
+                                                              R"(
+    { "name": "shade", "type": "test.shade", "in": { "src": "history" }, "out": { "color": "ldr" } },
+    { "name": "accumulate", "type": "skip.voxels", "out": { "volume": "history" } })"),
+                                             registry());
+  const CompiledResource& history = g.resources[static_cast<size_t>(g.find_resource("history"))];
+  ASSERT_EQ(history.end_state.at(0).layout, VK_IMAGE_LAYOUT_GENERAL);
+  FrameSync sync(g);
+  std::vector<bool> skipped(g.passes.size(), false);
+  skipped[pass_index(g, "accumulate")] = true;
+  const FrameBarriers first = sync.plan(skipped);
+  const std::vector<Barrier> on_history = barriers_on(g, first, "history");
+  ASSERT_EQ(on_history.size(), 2u);
+  EXPECT_EQ(on_history[0].old_layout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(on_history[0].new_layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  // The frame still ends where every frame ends, for rebuilds and read-backs.
+  EXPECT_EQ(on_history[1].new_layout, VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_NE(find_barrier(g, first.frame_end, "history"), nullptr);
+  EXPECT_EQ(sync.state(static_cast<size_t>(history.physical), 0).layout, VK_IMAGE_LAYOUT_GENERAL);
 }
 
 }  // namespace

@@ -45,6 +45,25 @@ const CulledPass* CompiledGraph::find_culled(std::string_view pass_name) const {
   return nullptr;
 }
 
+std::vector<Diagnostic> validate_pass(const CompiledPass& pass) {
+  std::vector<Diagnostic> problems;
+  if (!pass.type_info || !pass.type_info->validate) return problems;
+  PassCheck check(pass, [&](const std::string& field, std::string message) {
+    Diagnostic d = message_only(std::move(message));
+    d.pass = pass.name;
+    d.field = field;
+    problems.push_back(std::move(d));
+  });
+  try {
+    pass.type_info->validate(check);
+  } catch (const std::exception& e) {
+    Diagnostic d = message_only(std::string("validation of the pass failed: ") + e.what());
+    d.pass = pass.name;
+    problems.push_back(std::move(d));
+  }
+  return problems;
+}
+
 namespace {
 
 constexpr uint32_t kMaxImageSize2D = 16384;
@@ -56,6 +75,7 @@ struct PassWork {
   const PassTypeInfo* info = nullptr;  // null: unknown type
   bool usable = false;                 // known type and a unique name: part of the graph
   std::map<std::string, ParamValue> params;
+  std::map<std::string, SourceLoc> param_locs;  // where a parameter is set: file or --set
   std::vector<SlotBinding> bindings;
   std::string culled;  // the reason, empty while live
 };
@@ -98,6 +118,7 @@ class Compiler {
     resolve_passes();
     apply_pass_overrides();
     check_skipping_passes_write_persistent();
+    validate_passes();
     check_outputs_declared();
     check_reads_have_writers();
     check_cycles();
@@ -461,6 +482,7 @@ class Compiler {
         continue;
       }
       const json::Value& value = setting.value;
+      w.param_locs[spec->name] = value.loc();
       try {
         if (spec->type == ParamType::Enum) {
           if (!value.is_string()) {
@@ -641,6 +663,7 @@ class Compiler {
         const ParamSpec* spec = find_param(*w.info, key.substr(name.size() + 1));
         if (!spec) continue;
         matched = true;
+        w.param_locs[spec->name] = override_loc(key, text);
         try {
           w.params[spec->name] = parse_param_value(*spec, key, text);
         } catch (const GraphError& e) {
@@ -684,6 +707,47 @@ class Compiler {
                          "\"persistent\": true");
       }
     }
+  }
+
+  // The type's own checks of parameter and slot combinations, on every pass the file declares
+  // (culled or not) whose parameters and bindings resolved without errors.
+  void validate_passes() {
+    for (const PassWork& w : work_) {
+      if (!w.usable || !w.info->validate) continue;
+      const PassDesc& pd = *w.desc;
+      const bool all_bound = w.bindings.size() == pd.inputs.size() + pd.outputs.size();
+      const bool reported = std::any_of(diags_.items().begin(), diags_.items().end(),
+                                        [&](const Diagnostic& d) { return d.pass == pd.name; });
+      if (!all_bound || reported) continue;
+      CompiledPass declared;
+      declared.name = pd.name;
+      declared.type = pd.type;
+      declared.type_info = w.info;
+      declared.loc = pd.loc;
+      declared.params = w.params;
+      declared.bindings = w.bindings;
+      for (Diagnostic& d : validate_pass(declared)) {
+        d.loc = field_loc(w, d.field);
+        diags_.add(std::move(d));
+      }
+    }
+  }
+
+  // Where a field of a pass is written: a parameter's value (or its --set), a slot's binding;
+  // the pass itself for what the file leaves out.
+  static SourceLoc field_loc(const PassWork& w, const std::string& field) {
+    const size_t dot = field.find('.');
+    const std::string section = field.substr(0, dot);
+    const std::string name = dot == std::string::npos ? std::string() : field.substr(dot + 1);
+    if (section == "params") {
+      auto it = w.param_locs.find(name);
+      if (it != w.param_locs.end()) return it->second;
+    } else {
+      for (const SlotBinding& b : w.bindings) {
+        if (b.slot == name && b.is_input == (section == "in")) return b.loc;
+      }
+    }
+    return w.desc->loc;
   }
 
   // A transient holds nothing when a frame starts, so the first pass using it must write it;

@@ -75,6 +75,10 @@ struct CompiledPass {
 // writes (not scratch) bound to a transient resource. A pass may skip only when no binding is.
 bool skip_leaves_undefined(const SlotBinding& binding);
 
+// What the validate hook of the pass's type reports (nothing when it has none), each problem
+// naming the pass and the field ("params.resolution", "out.half_res"), without a location.
+std::vector<Diagnostic> validate_pass(const CompiledPass& pass);
+
 struct CulledPass {
   std::string name;
   std::string type;

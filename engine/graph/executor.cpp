@@ -558,7 +558,12 @@ bool Executor::set_param(const std::string& key, const std::string& value) {
     for (const ParamSpec& spec : pass.type_info->params) {
       candidates.push_back(pass.name + "." + spec.name);
       if (key != pass.name + "." + spec.name) continue;
+      const ParamValue previous = pass.params[spec.name];
       pass.params[spec.name] = parse_param_value(spec, key, value);
+      if (std::vector<Diagnostic> problems = validate_pass(pass); !problems.empty()) {
+        pass.params[spec.name] = previous;
+        throw GraphError(std::move(problems));
+      }
       LivePass& live = passes_[s];
       live.impl->params_changed = true;
       if (spec.live) return true;

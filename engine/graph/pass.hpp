@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/graph/frame.hpp"
@@ -101,6 +102,13 @@ struct SlotSpec {
   bool scratch = false;
 };
 
+struct CompiledPass;
+class PassCheck;
+
+// Checks of a pass's parameters and bound slots that the declarations cannot express; the
+// compiler runs it for every pass of a graph file, so problems show up in `voxgi graph check`.
+using PassValidator = std::function<void(PassCheck& check)>;
+
 struct PassTypeInfo {
   std::string type;  // "family.pass"
   std::string doc;
@@ -111,6 +119,7 @@ struct PassTypeInfo {
   // writes as the previous frame left it; the compiler then requires every output it writes,
   // scratch slots aside, to be persistent.
   bool may_skip = false;
+  PassValidator validate;  // may be empty
 };
 
 // What a slot is bound to, as compiled: sizes are resolved.
@@ -138,27 +147,54 @@ struct BoundResource {
 
 class PassContextImpl;
 
+// A pass as the graph declares it: its name, resolved parameters and bound slots. The type's
+// validate hook sees it through PassCheck when the graph compiles, the pass through PassContext.
+class PassDeclaration {
+ public:
+  explicit PassDeclaration(const CompiledPass& pass) : pass_(pass) {}
+
+  const std::string& pass_name() const;
+  bool has(std::string_view slot) const;  // false for an unbound optional slot
+  const ResourceInfo& info(std::string_view slot) const;
+
+  double number(std::string_view param) const;
+  int integer(std::string_view param) const { return static_cast<int>(number(param)); }
+  bool flag(std::string_view param) const { return number(param) != 0.0; }
+  const std::string& choice(std::string_view param) const;
+
+ protected:
+  const CompiledPass& pass_;
+};
+
+// What a pass type's validate hook reports to: each problem becomes a compile error located at
+// the parameter's or slot's place in the graph file (the pass's when it is not written there).
+class PassCheck : public PassDeclaration {
+ public:
+  using Report = std::function<void(const std::string& field, std::string message)>;
+  PassCheck(const CompiledPass& pass, Report report)
+      : PassDeclaration(pass), report_(std::move(report)) {}
+
+  void param_error(std::string_view param, std::string message);
+  void slot_error(std::string_view slot, std::string message);
+
+ private:
+  Report report_;
+};
+
 // Everything a pass may use. Valid during setup() and execute(); cmd() and resource() only
 // during execute().
-class PassContext {
+class PassContext : public PassDeclaration {
  public:
-  explicit PassContext(PassContextImpl& impl) : impl_(impl) {}
+  explicit PassContext(PassContextImpl& impl);
 
   gpu::Context& gpu() const;
   gpu::ShaderCompiler& shaders() const;
   const scene::Scene& scene() const;
   scene::GpuScene& gpu_scene() const;
   const FrameInfo& frame() const;
-  const std::string& pass_name() const;
 
-  bool has(std::string_view slot) const;  // false for an unbound optional slot
-  const ResourceInfo& info(std::string_view slot) const;
   const BoundResource& resource(std::string_view slot) const;
 
-  double number(std::string_view param) const;
-  int integer(std::string_view param) const { return static_cast<int>(number(param)); }
-  bool flag(std::string_view param) const { return number(param) != 0.0; }
-  const std::string& choice(std::string_view param) const;
   // True when a parameter of this pass changed since the previous execute().
   bool params_changed() const;
   // How many times a pass writing the slot's resource has executed (skipped runs do not count),

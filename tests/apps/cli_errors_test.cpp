@@ -148,6 +148,34 @@ TEST_F(VoxgiCli, GraphCheckRefusesTransientOutputsOfPassesThatMaySkip) {
   EXPECT_TRUE(failed_before_rendering(r));
 }
 
+// Half-resolution cone tracing needs its scratch image: found by `graph check`, not at render.
+TEST_F(VoxgiCli, GraphCheckRefusesHalfResolutionWithoutHalfRes) {
+  std::string text = vct_graph_text();
+  const size_t trace = text.find("\"name\": \"cone_trace\"");
+  const std::string full = "\"resolution\": \"full\"";
+  const std::string scratch = ",\n               \"half_res\": \"gi.half\"";
+  ASSERT_NE(text.find(full, trace), std::string::npos);
+  ASSERT_NE(text.find(scratch, trace), std::string::npos) << "graphs/vct.json changed";
+  text.replace(text.find(full, trace), full.size(), "\"resolution\": \"half\"");
+  text.erase(text.find(scratch, trace), scratch.size());
+  write_text(dir_ / "half.json", text);
+  const ProcessResult r = voxgi({"graph", "check", "half.json"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(
+      r, {location_of("half.json", text, "\"name\": \"cone_trace\"", "\"half\"") +
+          ": error: pass 'cone_trace' field 'params.resolution': 'half' needs the output slot "
+          "'half_res' bound"}));
+  // The same through --set, located there.
+  std::string no_scratch = vct_graph_text();
+  no_scratch.erase(no_scratch.find(scratch), scratch.size());
+  write_text(dir_ / "no-scratch.json", no_scratch);
+  const ProcessResult over =
+      voxgi({"graph", "check", "no-scratch.json", "--set", "cone_trace.resolution=half"});
+  EXPECT_TRUE(exited_with(over, kError));
+  EXPECT_TRUE(stderr_has(over, {"--set cone_trace.resolution=half: error: pass 'cone_trace' "
+                                "field 'params.resolution': 'half' needs"}));
+}
+
 // ---- --set --------------------------------------------------------------------------------
 
 // --set keys are checked against the graph, in the compiler, so they fail like a graph error.

@@ -146,6 +146,9 @@ Registry make_exec_registry(bool accumulate_may_skip = true) {
   ParamSpec scale = param("scale", ParamType::Float, 1.0, 0.0, 10.0);
   scale.live = false;
   compose.params = {scale};
+  compose.validate = [](PassCheck& check) {
+    if (check.number("scale") == 0.0) check.param_error("scale", "0 would zero the result");
+  };
   r.add(compose, [] { return std::make_unique<ComposePass>(); });
   return r;
 }
@@ -356,6 +359,15 @@ TEST_F(ExecutorTest, LiveAndNonLiveParameterChanges) {
   EXPECT_FLOAT_EQ(rgba[0], 5.0f);
 
   EXPECT_THROW(executor.set_param("compose.scale", "11"), GraphError);
+  // The type's validate hook sees every change; a refused value is not kept.
+  try {
+    executor.set_param("compose.scale", "0");
+    ADD_FAILURE() << "scale 0 was accepted";
+  } catch (const GraphError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "error: pass 'compose' field 'params.scale': 0 would zero the result");
+  }
+  EXPECT_DOUBLE_EQ(executor.compiled().find_pass("compose")->params.at("scale").number, 0.5);
   EXPECT_THROW(executor.set_param("fill.valeu", "1"), GraphError);
   try {
     executor.set_param("fill.valeu", "1");

@@ -1,6 +1,6 @@
 // The compile-time side of the pass contract: a pass that may skip writes only persistent
-// resources, a transient's first use writes it; and the barriers FrameSync plans for frames in
-// which passes skip.
+// resources, a transient's first use writes it, pass types' validate hooks report with file, line
+// and column; and the barriers FrameSync plans for frames in which passes skip.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +15,9 @@ using test::kBuffer;
 using test::kImages;
 using test::slot;
 
-// test.* types plus skip.voxels: may skip; writes "volume", optional scratch buffer "scratch".
+// test.* types plus:
+//   skip.voxels  may skip; writes "volume", optional scratch buffer "scratch"
+//   check.trace  "resolution" full|half needs "half_res" for half, of half the size of "result"
 Registry make_contract_registry() {
   Registry r = test::make_registry();
   PassTypeInfo voxels;
@@ -26,6 +28,23 @@ Registry make_contract_registry() {
   voxels.may_skip = true;
   r.add(voxels, [] { return std::make_unique<test::DeclarationOnlyPass>(); });
 
+  PassTypeInfo trace;
+  trace.type = "check.trace";
+  trace.inputs = {slot("src", kImages, Access::Sampled, kStageCompute)};
+  trace.outputs = {slot("result", kImages, Access::StorageWrite, kStageCompute),
+                   slot("half_res", kImages, Access::StorageWrite, kStageCompute, true)};
+  trace.params = {test::param("resolution", ParamType::Enum, 0, 0, 0, {"full", "half"})};
+  trace.params[0].live = false;
+  trace.validate = [](PassCheck& check) {
+    if (check.choice("resolution") == "half" && !check.has("half_res")) {
+      check.param_error("resolution", "'half' needs 'half_res' bound");
+    }
+    if (check.has("half_res") &&
+        check.info("half_res").extent.width * 2 != check.info("result").extent.width) {
+      check.slot_error("half_res", "must be half the size of 'result'");
+    }
+  };
+  r.add(trace, [] { return std::make_unique<test::DeclarationOnlyPass>(); });
   return r;
 }
 
@@ -108,6 +127,61 @@ TEST(SkipContract, ATransientsFirstUseMustWriteIt) {
   // Persistent, the same graph carries the history from frame to frame.
   const CompiledGraph g = test::compile_text(history_graph(", \"persistent\": true"), registry());
   EXPECT_TRUE(g.resources[static_cast<size_t>(g.find_resource("history"))].carries_contents);
+}
+
+// "trace" (check.trace) from "hdr" into "result", with the given extra fields.
+std::string trace_graph(const std::string& params, const std::string& half_res,
+                        const std::string& when = {}) {
+  return test::graph_text(R"(
+    "result": { "type": "image2d", "format": "rgba16f", "size": 8 },
+    "half": { "type": "image2d", "format": "rgba16f", "size": 4 },
+    "quarter": { "type": "image2d", "format": "rgba16f", "size": 2 },)",
+                          R"(
+    { "name": "clear", "type": "test.clear", "out": { "color": "hdr" } },
+    { "name": "trace", "type": "check.trace")" +
+                              when + params + R"(, "in": { "src": "hdr" },
+      "out": { "result": "result")" +
+                              half_res + R"( } },
+    { "name": "shade", "type": "test.shade", "in": { "src": "result" }, "out": { "color": "ldr" } })");
+}
+
+TEST(ValidateHook, ReportsAtTheParameterInTheFile) {
+  const std::string text = trace_graph(R"(, "params": { "resolution": "half" })", "");
+  EXPECT_EQ(single_error(text), where(text, "\"half\" }", "\"resolution\"") +
+                                    ": error: pass 'trace' field 'params.resolution': 'half' "
+                                    "needs 'half_res' bound");
+  // Bound, it compiles.
+  test::compile_text(
+      trace_graph(R"(, "params": { "resolution": "half" })", R"(, "half_res": "half")"),
+      registry());
+}
+
+TEST(ValidateHook, ReportsAtTheSetOverride) {
+  CompileOptions options;
+  options.overrides = {{"trace.resolution", "half"}};
+  EXPECT_EQ(single_error(trace_graph("", ""), options),
+            "--set trace.resolution=half: error: pass 'trace' field 'params.resolution': 'half' "
+            "needs 'half_res' bound");
+}
+
+TEST(ValidateHook, ReportsAtTheSlotBindingAndChecksCulledPasses) {
+  const std::string text = trace_graph("", R"(, "half_res": "quarter")");
+  EXPECT_EQ(single_error(text), where(text, "\"quarter\" }", "\"half_res\"") +
+                                    ": error: pass 'trace' field 'out.half_res': must be half the "
+                                    "size of 'result'");
+  // A pass the scene culls is still a mistake in the file.
+  CompileOptions options;
+  options.scene_features = {{"scene.has_glossy", 0}};
+  const std::string culled = single_error(
+      trace_graph("", R"(, "half_res": "quarter")", R"(, "when": "scene.has_glossy")"), options);
+  EXPECT_NE(culled.find("must be half the size of 'result'"), std::string::npos) << culled;
+}
+
+TEST(ValidateHook, SkippedWhenThePassHasOtherErrors) {
+  // An unknown resource is reported once; the hook does not add a second, derived error.
+  const std::string error = single_error(
+      trace_graph(R"(, "params": { "resolution": "half" })", R"(, "half_res": "hlaf")"));
+  EXPECT_NE(error.find("unknown resource 'hlaf'"), std::string::npos) << error;
 }
 
 // ---- barriers of frames in which passes skip ------------------------------------------------

@@ -146,7 +146,7 @@ int render_command(const std::vector<std::string>& argv) {
     input.lights_changed = frame == 0 || moved;
     input.geometry_changed = frame == 0 || moved;
     executor.render(input);
-    report.add_frame(executor.timings());
+    report.add_frame(executor.timings(), graph::barrier_count(executor.frame_barriers()));
   }
 
   for (const auto& [name, resource] : compiled.outputs) {

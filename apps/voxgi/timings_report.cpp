@@ -15,7 +15,9 @@ namespace voxgi::cli {
 
 using runtime::median;
 
-void TimingsReport::add_frame(const std::vector<graph::Executor::PassTiming>& frame) {
+void TimingsReport::add_frame(const std::vector<graph::Executor::PassTiming>& frame,
+                              size_t barriers) {
+  barriers_per_frame_.push_back(barriers);
   if (frames_seen_ == 0) first_frame_ = frame;
   if (frames_seen_++ < warmup_frames_) return;
   frames_.push_back(frame);
@@ -89,6 +91,8 @@ void TimingsReport::write_json(const std::filesystem::path& path, const std::str
     first.push_back({{"pass", t.pass}, {"gpu_ms", t.gpu_ms}, {"skip_reason", t.skipped}});
   }
   doc["first_frame"] = first;
+  // Frames in which passes skip record fewer barriers: none for what they would have written.
+  doc["barriers_per_frame"] = barriers_per_frame_;
   doc["total_gpu_ms"] = total_gpu;
   doc["total_cpu_ms"] = total_cpu;
 

@@ -13,7 +13,8 @@ class TimingsReport {
  public:
   explicit TimingsReport(uint32_t warmup_frames) : warmup_frames_(warmup_frames) {}
 
-  void add_frame(const std::vector<graph::Executor::PassTiming>& frame);
+  // `barriers`: the graph barriers the frame recorded (graph::barrier_count).
+  void add_frame(const std::vector<graph::Executor::PassTiming>& frame, size_t barriers);
 
   struct PassSummary {
     std::string pass, type;
@@ -36,6 +37,7 @@ class TimingsReport {
   uint32_t frames_seen_ = 0;
   std::vector<std::vector<graph::Executor::PassTiming>> frames_;
   std::vector<graph::Executor::PassTiming> first_frame_;  // measured or not
+  std::vector<size_t> barriers_per_frame_;                // every frame, warm-up included
 };
 
 }  // namespace voxgi::cli

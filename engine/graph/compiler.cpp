@@ -19,6 +19,11 @@ const SlotBinding* CompiledPass::binding(std::string_view slot) const {
   return nullptr;
 }
 
+bool skip_leaves_undefined(const SlotBinding& b) {
+  return !b.is_input && b.resource >= 0 && access_writes(b.spec->access) && !b.spec->scratch &&
+         !b.info.persistent;
+}
+
 int CompiledGraph::find_resource(std::string_view resource_name) const {
   for (size_t i = 0; i < resources.size(); ++i) {
     if (resources[i].info.name == resource_name) return static_cast<int>(i);
@@ -40,6 +45,25 @@ const CulledPass* CompiledGraph::find_culled(std::string_view pass_name) const {
   return nullptr;
 }
 
+std::vector<Diagnostic> validate_pass(const CompiledPass& pass) {
+  std::vector<Diagnostic> problems;
+  if (!pass.type_info || !pass.type_info->validate) return problems;
+  PassCheck check(pass, [&](const std::string& field, std::string message) {
+    Diagnostic d = message_only(std::move(message));
+    d.pass = pass.name;
+    d.field = field;
+    problems.push_back(std::move(d));
+  });
+  try {
+    pass.type_info->validate(check);
+  } catch (const std::exception& e) {
+    Diagnostic d = message_only(std::string("validation of the pass failed: ") + e.what());
+    d.pass = pass.name;
+    problems.push_back(std::move(d));
+  }
+  return problems;
+}
+
 namespace {
 
 constexpr uint32_t kMaxImageSize2D = 16384;
@@ -51,6 +75,7 @@ struct PassWork {
   const PassTypeInfo* info = nullptr;  // null: unknown type
   bool usable = false;                 // known type and a unique name: part of the graph
   std::map<std::string, ParamValue> params;
+  std::map<std::string, SourceLoc> param_locs;  // where a parameter is set: file or --set
   std::vector<SlotBinding> bindings;
   std::string culled;  // the reason, empty while live
 };
@@ -92,6 +117,8 @@ class Compiler {
     resolve_resources();
     resolve_passes();
     apply_pass_overrides();
+    check_skipping_passes_write_persistent();
+    validate_passes();
     check_outputs_declared();
     check_reads_have_writers();
     check_cycles();
@@ -100,6 +127,8 @@ class Compiler {
     check_outputs_written();
     diags_.throw_if_any();
     schedule();
+    check_transients_written_first();
+    diags_.throw_if_any();
     plan_resources(graph_, options_);
     return std::move(graph_);
   }
@@ -453,6 +482,7 @@ class Compiler {
         continue;
       }
       const json::Value& value = setting.value;
+      w.param_locs[spec->name] = value.loc();
       try {
         if (spec->type == ParamType::Enum) {
           if (!value.is_string()) {
@@ -633,6 +663,7 @@ class Compiler {
         const ParamSpec* spec = find_param(*w.info, key.substr(name.size() + 1));
         if (!spec) continue;
         matched = true;
+        w.param_locs[spec->name] = override_loc(key, text);
         try {
           w.params[spec->name] = parse_param_value(*spec, key, text);
         } catch (const GraphError& e) {
@@ -654,6 +685,94 @@ class Compiler {
             override_loc(key, text), {}, key,
             "unknown --set key '" + key + "' (expected a graph parameter or 'pass.parameter')",
             did_you_mean(key, candidates));
+      }
+    }
+  }
+
+  // ---- pass type rules -------------------------------------------------------------------
+  // A pass that skips a frame keeps what it wrote in an earlier one, which only a persistent
+  // resource still holds.
+  void check_skipping_passes_write_persistent() {
+    for (const PassWork& w : work_) {
+      if (!w.usable || !w.info->may_skip) continue;
+      for (const SlotBinding& b : w.bindings) {
+        if (!skip_leaves_undefined(b)) continue;
+        const CompiledResource& r = graph_.resources[static_cast<size_t>(b.resource)];
+        diags_.error(b.loc, w.desc->name, "out." + b.slot,
+                     "pass type '" + w.desc->type +
+                         "' may skip frames whose inputs did not change and keep what it wrote "
+                         "earlier, but resource '" +
+                         r.info.name + "' (line " + std::to_string(r.loc.line) +
+                         ") is transient, so it would be undefined then: mark it "
+                         "\"persistent\": true");
+      }
+    }
+  }
+
+  // The type's own checks of parameter and slot combinations, on every pass the file declares
+  // (culled or not) whose parameters and bindings resolved without errors.
+  void validate_passes() {
+    for (const PassWork& w : work_) {
+      if (!w.usable || !w.info->validate) continue;
+      const PassDesc& pd = *w.desc;
+      const bool all_bound = w.bindings.size() == pd.inputs.size() + pd.outputs.size();
+      const bool reported = std::any_of(diags_.items().begin(), diags_.items().end(),
+                                        [&](const Diagnostic& d) { return d.pass == pd.name; });
+      if (!all_bound || reported) continue;
+      CompiledPass declared;
+      declared.name = pd.name;
+      declared.type = pd.type;
+      declared.type_info = w.info;
+      declared.loc = pd.loc;
+      declared.params = w.params;
+      declared.bindings = w.bindings;
+      for (Diagnostic& d : validate_pass(declared)) {
+        d.loc = field_loc(w, d.field);
+        diags_.add(std::move(d));
+      }
+    }
+  }
+
+  // Where a field of a pass is written: a parameter's value (or its --set), a slot's binding;
+  // the pass itself for what the file leaves out.
+  static SourceLoc field_loc(const PassWork& w, const std::string& field) {
+    const size_t dot = field.find('.');
+    const std::string section = field.substr(0, dot);
+    const std::string name = dot == std::string::npos ? std::string() : field.substr(dot + 1);
+    if (section == "params") {
+      auto it = w.param_locs.find(name);
+      if (it != w.param_locs.end()) return it->second;
+    } else {
+      for (const SlotBinding& b : w.bindings) {
+        if (b.slot == name && b.is_input == (section == "in")) return b.loc;
+      }
+    }
+    return w.desc->loc;
+  }
+
+  // A transient holds nothing when a frame starts, so the first pass using it must write it;
+  // reading it there would silently carry it from the previous frame.
+  void check_transients_written_first() {
+    std::vector<bool> used(graph_.resources.size(), false);
+    for (const CompiledPass& p : graph_.passes) {
+      for (const SlotBinding& b : p.bindings) {
+        if (b.resource < 0 || used[static_cast<size_t>(b.resource)]) continue;
+        const CompiledResource& r = graph_.resources[static_cast<size_t>(b.resource)];
+        if (r.info.persistent) continue;
+        for (const SlotBinding& other : p.bindings) {
+          if (other.resource != b.resource || !binding_reads(other) || other.spec->scratch)
+            continue;
+          diags_.error(other.loc, p.name, (other.is_input ? "in." : "out.") + other.slot,
+                       "resource '" + r.info.name +
+                           "' is transient, so it holds nothing when the frame starts, but its "
+                           "first use here reads it (" +
+                           access_name(other.spec->access) +
+                           "): let an earlier pass write it, or mark it \"persistent\": true to "
+                           "keep it across frames");
+        }
+      }
+      for (const SlotBinding& b : p.bindings) {
+        if (b.resource >= 0) used[static_cast<size_t>(b.resource)] = true;
       }
     }
   }

@@ -71,6 +71,14 @@ struct CompiledPass {
   const SlotBinding* binding(std::string_view slot) const;
 };
 
+// True when skipping the pass would leave this binding's resource undefined: an output it
+// writes (not scratch) bound to a transient resource. A pass may skip only when no binding is.
+bool skip_leaves_undefined(const SlotBinding& binding);
+
+// What the validate hook of the pass's type reports (nothing when it has none), each problem
+// naming the pass and the field ("params.resolution", "out.half_res"), without a location.
+std::vector<Diagnostic> validate_pass(const CompiledPass& pass);
+
 struct CulledPass {
   std::string name;
   std::string type;
@@ -89,7 +97,7 @@ struct CompiledResource {
   int last_pass = -1;
   uint64_t bytes = 0;  // estimated
   bool is_output = false;
-  // Carried between frames (persistent, or read-modify-written before any plain write).
+  // Carried between frames: persistent. A transient's first use in a frame writes it.
   bool carries_contents = false;
   // State per mip (one entry for buffers) at the end of a frame, after output transitions.
   std::vector<ResourceState> end_state;

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <utility>
 
+#include "engine/graph/resource_plan.hpp"
+
 namespace voxgi::graph {
 
 using Json = nlohmann::json;
@@ -117,6 +119,27 @@ Json loc_json(const SourceLoc& loc) {
   return Json{{"file", loc.file}, {"line", loc.line}, {"column", loc.column}};
 }
 
+// The frame of a static scene: every pass that may skip does, right after a frame in which
+// all passes ran.
+struct SkippingFrame {
+  size_t all_passes_barriers = 0;     // in a frame in which every pass runs
+  std::vector<std::string> skipping;  // pass names
+  FrameBarriers barriers;
+};
+
+SkippingFrame skipping_frame(const CompiledGraph& g) {
+  SkippingFrame frame;
+  std::vector<bool> skipped(g.passes.size(), false);
+  for (size_t s = 0; s < g.passes.size(); ++s) {
+    skipped[s] = g.passes[s].type_info && g.passes[s].type_info->may_skip;
+    if (skipped[s]) frame.skipping.push_back(g.passes[s].name);
+  }
+  FrameSync sync(g);
+  frame.all_passes_barriers = barrier_count(sync.all_passes_frame());
+  frame.barriers = sync.plan(skipped);
+  return frame;
+}
+
 std::string dot_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -186,6 +209,23 @@ std::string explain(const CompiledGraph& g) {
   if (!g.frame_end.empty()) {
     out << "  frame end:\n";
     for (const Barrier& b : g.frame_end) out << "      barrier " << barrier_text(g, b) << "\n";
+  }
+  const SkippingFrame skipping = skipping_frame(g);
+  out << "barriers per frame: " << skipping.all_passes_barriers << "\n";
+  if (!skipping.skipping.empty()) {
+    std::string names;
+    for (const std::string& n : skipping.skipping) names += (names.empty() ? "" : ", ") + n;
+    out << "\nframe in which " << names
+        << " skip (a static scene): " << barrier_count(skipping.barriers) << " barriers\n";
+    auto list = [&](const char* where, const std::vector<Barrier>& barriers) {
+      if (barriers.empty()) return;
+      out << "  " << where << ":\n";
+      for (const Barrier& b : barriers) out << "      barrier " << barrier_text(g, b) << "\n";
+    };
+    list("frame start", skipping.barriers.frame_start);
+    for (size_t s = 0; s < g.passes.size(); ++s)
+      list(g.passes[s].name.c_str(), skipping.barriers.passes[s]);
+    list("frame end", skipping.barriers.frame_end);
   }
   out << "\nculled (" << g.culled.size() << "):\n";
   for (const CulledPass& c : g.culled) {
@@ -338,6 +378,10 @@ Json barriers_to_json(const CompiledGraph& g) {
   }
   j["frame_end"] = Json::array();
   for (const Barrier& b : g.frame_end) j["frame_end"].push_back(barrier_json(g, b));
+  const SkippingFrame skipping = skipping_frame(g);
+  j["per_frame"] = skipping.all_passes_barriers;
+  j["skipping_frame"] =
+      Json{{"skipping", skipping.skipping}, {"barriers", barrier_count(skipping.barriers)}};
   return j;
 }
 

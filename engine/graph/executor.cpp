@@ -27,6 +27,13 @@ bool same_description(const ResourceInfo& a, const ResourceInfo& b) {
          a.buffer_size == b.buffer_size;
 }
 
+// What a pass writes has a new version once it executed.
+void advance_versions(const CompiledPass& pass, std::vector<uint64_t>& versions) {
+  for (const SlotBinding& b : pass.bindings) {
+    if (!b.is_input && b.resource >= 0) ++versions[static_cast<size_t>(b.resource)];
+  }
+}
+
 float srgb_to_linear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
@@ -151,6 +158,8 @@ void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
   physical_.clear();
 
   graph_ = graph;
+  sync_ = std::make_unique<FrameSync>(graph_);
+  frame_barriers_ = {};
   scene_ = &scene;
   gpu_scene_ = &gpu_scene;
   scene::SceneFeatures features = scene.features();
@@ -393,9 +402,48 @@ void Executor::record_initialisation(VkCommandBuffer cmd) {
   }
 }
 
+// Asked before anything is recorded, so that the frame's barriers can leave out what skipped
+// passes would have written. Each pass sees the versions the passes before it leave, counted
+// on a copy; execute() counts them for real.
+std::vector<std::string> Executor::skip_reasons() {
+  std::vector<std::string> reasons(passes_.size());
+  std::vector<uint64_t> versions = resource_versions_;
+  for (size_t s = 0; s < passes_.size(); ++s) {
+    LivePass& live = passes_[s];
+    const CompiledPass& pass = graph_.passes[s];
+    live.impl->resource_versions = &versions;
+    PassContext ctx(*live.impl);
+    reasons[s] = live.pass->skip_reason(ctx);
+    live.impl->resource_versions = &resource_versions_;
+    if (reasons[s].empty()) {
+      advance_versions(pass, versions);
+      continue;
+    }
+    const std::string what =
+        "pass '" + pass.name + "' (" + pass.type + ") reported a skip (\"" + reasons[s] + "\"), ";
+    if (!pass.type_info->may_skip) {
+      throw std::logic_error(what + "but its type does not declare may_skip");
+    }
+    for (const SlotBinding& b : pass.bindings) {
+      if (!skip_leaves_undefined(b)) continue;
+      throw std::logic_error(what + "but it writes the transient resource '" + b.info.name +
+                             "' (slot '" + b.slot +
+                             "'), which would be left undefined; a pass may skip only when "
+                             "everything it writes is persistent");
+    }
+  }
+  return reasons;
+}
+
 void Executor::render(const FrameInput& input) {
   if (!scene_) throw std::logic_error("Executor::render() called before build()");
   fill_frame(input);
+  const std::vector<std::string> skips = skip_reasons();
+  std::vector<bool> skipped(skips.size());
+  for (size_t s = 0; s < skips.size(); ++s) skipped[s] = !skips[s].empty();
+  // A frame that fails to record is not submitted: the tracked state goes back to before it.
+  const FrameSync sync_before = *sync_;
+  FrameBarriers barriers = sync_->plan(skipped);
   gpu::check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -405,15 +453,14 @@ void Executor::render(const FrameInput& input) {
   try {
     timestamps_->reset(cmd_);
     if (first_frame_) record_initialisation(cmd_);
-    record_barriers(cmd_, graph_.frame_start);
+    record_barriers(cmd_, barriers.frame_start);
     for (size_t s = 0; s < passes_.size(); ++s) {
       LivePass& live = passes_[s];
       const CompiledPass& pass = graph_.passes[s];
-      record_barriers(cmd_, pass.barriers);
-      PassTiming timing{pass.name, pass.type, 0.0, 0.0, {}};
+      record_barriers(cmd_, barriers.passes[s]);
+      PassTiming timing{pass.name, pass.type, 0.0, 0.0, skips[s]};
       PassContext ctx(*live.impl);
       const uint32_t begin_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
-      timing.skipped = live.pass->skip_reason(ctx);
       if (timing.skipped.empty()) {
         live.impl->cmd = cmd_;
         live.impl->executing = true;
@@ -430,19 +477,21 @@ void Executor::render(const FrameInput& input) {
                 .count();
         live.impl->executing = false;
         live.impl->params_changed = false;
+        advance_versions(pass, resource_versions_);
         for (const SlotBinding& b : pass.bindings) {
           if (b.is_input || b.resource < 0) continue;
           const size_t r = static_cast<size_t>(b.resource);
-          versions_by_name_[graph_.resources[r].info.name] = ++resource_versions_[r];
+          versions_by_name_[graph_.resources[r].info.name] = resource_versions_[r];
         }
       }
       const uint32_t end_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
       queries.emplace_back(begin_query, end_query);
       timings.push_back(std::move(timing));
     }
-    record_barriers(cmd_, graph_.frame_end);
+    record_barriers(cmd_, barriers.frame_end);
   } catch (...) {
     vkEndCommandBuffer(cmd_);
+    *sync_ = sync_before;
     throw;
   }
   gpu::check(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
@@ -466,6 +515,7 @@ void Executor::render(const FrameInput& input) {
     }
   }
   timings_ = std::move(timings);
+  frame_barriers_ = std::move(barriers);
   for (Physical& phys : physical_) phys.fresh = false;
   first_frame_ = false;
   rendered_ = true;
@@ -508,7 +558,12 @@ bool Executor::set_param(const std::string& key, const std::string& value) {
     for (const ParamSpec& spec : pass.type_info->params) {
       candidates.push_back(pass.name + "." + spec.name);
       if (key != pass.name + "." + spec.name) continue;
+      const ParamValue previous = pass.params[spec.name];
       pass.params[spec.name] = parse_param_value(spec, key, value);
+      if (std::vector<Diagnostic> problems = validate_pass(pass); !problems.empty()) {
+        pass.params[spec.name] = previous;
+        throw GraphError(std::move(problems));
+      }
       LivePass& live = passes_[s];
       live.impl->params_changed = true;
       if (spec.live) return true;

@@ -13,6 +13,7 @@
 #include "engine/graph/frame.hpp"
 #include "engine/graph/pass.hpp"
 #include "engine/graph/pass_context_impl.hpp"
+#include "engine/graph/resource_plan.hpp"
 
 namespace voxgi::gpu {
 class TimestampQueries;
@@ -44,7 +45,9 @@ class Executor {
     bool geometry_changed = true;
   };
 
-  // Records one command buffer for the whole frame, submits it and waits for it.
+  // Records one command buffer for the whole frame, submits it and waits for it. Throws when a
+  // pass skips against the skip contract (its type does not declare may_skip, or it writes a
+  // transient resource), naming the pass and the resource.
   void render(const FrameInput& input);
 
   struct PassTiming {
@@ -55,6 +58,8 @@ class Executor {
     std::string skipped;  // the pass's skip_reason(), empty when it ran
   };
   const std::vector<PassTiming>& timings() const { return timings_; }
+  // The graph's barriers the last render() recorded (the first frame's initialisation aside).
+  const FrameBarriers& frame_barriers() const { return frame_barriers_; }
 
   // RGBA32F texels of an output after render(), converted from its format.
   std::vector<float> read_output(const std::string& output, uint32_t& width, uint32_t& height);
@@ -86,6 +91,8 @@ class Executor {
   void record_barriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers);
   void fill_frame(const FrameInput& input);
   void run_setup(LivePass& live);
+  // Each pass's skip reason for this frame (empty: it runs), asked in schedule order.
+  std::vector<std::string> skip_reasons();
 
   gpu::Context& context_;
   gpu::ShaderCompiler& shaders_;
@@ -98,6 +105,8 @@ class Executor {
   // Write counts per graph resource (index as in graph_.resources); by name across rebuilds.
   std::vector<uint64_t> resource_versions_;
   std::map<std::string, uint64_t> versions_by_name_;
+  std::unique_ptr<FrameSync> sync_;
+  FrameBarriers frame_barriers_;
   std::unique_ptr<gpu::Buffer> uniforms_;
   std::unique_ptr<gpu::TimestampQueries> timestamps_;
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;

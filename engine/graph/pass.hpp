@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "engine/graph/frame.hpp"
@@ -33,7 +34,7 @@ class GpuScene;
 namespace voxgi::graph {
 
 // Bumped whenever PassTypeInfo, Pass, PassContext or Registry change layout or meaning.
-inline constexpr uint32_t kPluginAbiVersion = 1;
+inline constexpr uint32_t kPluginAbiVersion = 2;
 
 enum class ParamType { Bool, Int, Float, Enum };
 // "bool", "int", "float" or "enum".
@@ -95,7 +96,18 @@ struct SlotSpec {
   std::vector<VkFormat> formats;  // empty: any format
   bool optional = false;
   std::string doc;
+  // Outputs only: working memory whose contents mean nothing after the pass. It may be
+  // transient even when the pass may skip or read-modify-writes it, so the pass must not rely
+  // on earlier contents unless the resource is persistent.
+  bool scratch = false;
 };
+
+struct CompiledPass;
+class PassCheck;
+
+// Checks of a pass's parameters and bound slots that the declarations cannot express; the
+// compiler runs it for every pass of a graph file, so problems show up in `voxgi graph check`.
+using PassValidator = std::function<void(PassCheck& check)>;
 
 struct PassTypeInfo {
   std::string type;  // "family.pass"
@@ -103,6 +115,11 @@ struct PassTypeInfo {
   std::vector<SlotSpec> inputs;
   std::vector<SlotSpec> outputs;
   std::vector<ParamSpec> params;
+  // The pass may skip a frame whose inputs did not change (Pass::skip_reason), leaving what it
+  // writes as the previous frame left it; the compiler then requires every output it writes,
+  // scratch slots aside, to be persistent.
+  bool may_skip = false;
+  PassValidator validate;  // may be empty
 };
 
 // What a slot is bound to, as compiled: sizes are resolved.
@@ -130,27 +147,54 @@ struct BoundResource {
 
 class PassContextImpl;
 
+// A pass as the graph declares it: its name, resolved parameters and bound slots. The type's
+// validate hook sees it through PassCheck when the graph compiles, the pass through PassContext.
+class PassDeclaration {
+ public:
+  explicit PassDeclaration(const CompiledPass& pass) : pass_(pass) {}
+
+  const std::string& pass_name() const;
+  bool has(std::string_view slot) const;  // false for an unbound optional slot
+  const ResourceInfo& info(std::string_view slot) const;
+
+  double number(std::string_view param) const;
+  int integer(std::string_view param) const { return static_cast<int>(number(param)); }
+  bool flag(std::string_view param) const { return number(param) != 0.0; }
+  const std::string& choice(std::string_view param) const;
+
+ protected:
+  const CompiledPass& pass_;
+};
+
+// What a pass type's validate hook reports to: each problem becomes a compile error located at
+// the parameter's or slot's place in the graph file (the pass's when it is not written there).
+class PassCheck : public PassDeclaration {
+ public:
+  using Report = std::function<void(const std::string& field, std::string message)>;
+  PassCheck(const CompiledPass& pass, Report report)
+      : PassDeclaration(pass), report_(std::move(report)) {}
+
+  void param_error(std::string_view param, std::string message);
+  void slot_error(std::string_view slot, std::string message);
+
+ private:
+  Report report_;
+};
+
 // Everything a pass may use. Valid during setup() and execute(); cmd() and resource() only
 // during execute().
-class PassContext {
+class PassContext : public PassDeclaration {
  public:
-  explicit PassContext(PassContextImpl& impl) : impl_(impl) {}
+  explicit PassContext(PassContextImpl& impl);
 
   gpu::Context& gpu() const;
   gpu::ShaderCompiler& shaders() const;
   const scene::Scene& scene() const;
   scene::GpuScene& gpu_scene() const;
   const FrameInfo& frame() const;
-  const std::string& pass_name() const;
 
-  bool has(std::string_view slot) const;  // false for an unbound optional slot
-  const ResourceInfo& info(std::string_view slot) const;
   const BoundResource& resource(std::string_view slot) const;
 
-  double number(std::string_view param) const;
-  int integer(std::string_view param) const { return static_cast<int>(number(param)); }
-  bool flag(std::string_view param) const { return number(param) != 0.0; }
-  const std::string& choice(std::string_view param) const;
   // True when a parameter of this pass changed since the previous execute().
   bool params_changed() const;
   // How many times a pass writing the slot's resource has executed (skipped runs do not count),
@@ -174,8 +218,10 @@ class Pass {
   virtual void setup(PassContext& ctx) { (void)ctx; }
   // Record commands into ctx.cmd().
   virtual void execute(PassContext& ctx) = 0;
-  // Non-empty: this frame can skip the pass (its outputs are persistent and its inputs did not
-  // change); the reason is reported by timings and `graph explain`.
+  // Non-empty: the pass skips this frame because its inputs did not change; the reason is
+  // reported by timings. Only types declaring may_skip may skip. Asked before anything of the
+  // frame is recorded, in schedule order, with resource versions as the passes before it leave
+  // them, so that no barrier is recorded for what a skipped pass would have written.
   virtual std::string skip_reason(const PassContext& ctx) const {
     (void)ctx;
     return {};

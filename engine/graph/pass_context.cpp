@@ -1,4 +1,5 @@
-// PassContext, the pass plugins' view of the graph, over the executor's PassContextImpl.
+// PassDeclaration and PassCheck over a compiled pass; PassContext over the executor's
+// PassContextImpl.
 #include <algorithm>
 #include <stdexcept>
 
@@ -16,6 +17,58 @@ size_t PassContextImpl::binding_index(std::string_view slot) const {
                               std::string(slot) + "'");
 }
 
+const std::string& PassDeclaration::pass_name() const {
+  return pass_.name;
+}
+
+bool PassDeclaration::has(std::string_view slot) const {
+  const SlotBinding* b = pass_.binding(slot);
+  return b && b->resource >= 0;
+}
+
+const ResourceInfo& PassDeclaration::info(std::string_view slot) const {
+  const SlotBinding* b = pass_.binding(slot);
+  if (!b) {
+    throw std::invalid_argument("pass '" + pass_.name + "' (" + pass_.type +
+                                ") has no bound slot '" + std::string(slot) + "'");
+  }
+  if (b->resource < 0) {
+    throw std::invalid_argument("pass '" + pass_.name + "': optional slot '" + std::string(slot) +
+                                "' is unbound (check has() first)");
+  }
+  return b->info;
+}
+
+double PassDeclaration::number(std::string_view param) const {
+  auto it = pass_.params.find(std::string(param));
+  if (it == pass_.params.end()) {
+    throw std::invalid_argument("pass '" + pass_.name + "' (" + pass_.type +
+                                ") has no parameter '" + std::string(param) + "'");
+  }
+  return it->second.number;
+}
+
+const std::string& PassDeclaration::choice(std::string_view param) const {
+  number(param);  // checks that it exists
+  return pass_.params.at(std::string(param)).text;
+}
+
+void PassCheck::param_error(std::string_view param, std::string message) {
+  number(param);  // checks that it exists
+  report_("params." + std::string(param), std::move(message));
+}
+
+void PassCheck::slot_error(std::string_view slot, std::string message) {
+  const SlotBinding* b = pass_.binding(slot);
+  bool is_input = b && b->is_input;
+  if (!b && pass_.type_info) {
+    for (const SlotSpec& s : pass_.type_info->inputs) is_input = is_input || s.name == slot;
+  }
+  report_((is_input ? "in." : "out.") + std::string(slot), std::move(message));
+}
+
+PassContext::PassContext(PassContextImpl& impl) : PassDeclaration(*impl.pass), impl_(impl) {}
+
 gpu::Context& PassContext::gpu() const {
   return *impl_.gpu;
 }
@@ -30,23 +83,6 @@ scene::GpuScene& PassContext::gpu_scene() const {
 }
 const FrameInfo& PassContext::frame() const {
   return *impl_.frame;
-}
-const std::string& PassContext::pass_name() const {
-  return impl_.pass->name;
-}
-
-bool PassContext::has(std::string_view slot) const {
-  const SlotBinding* b = impl_.pass->binding(slot);
-  return b && b->resource >= 0;
-}
-
-const ResourceInfo& PassContext::info(std::string_view slot) const {
-  const size_t i = impl_.binding_index(slot);
-  if (impl_.pass->bindings[i].resource < 0) {
-    throw std::invalid_argument("pass '" + impl_.pass->name + "': optional slot '" +
-                                std::string(slot) + "' is unbound (check has() first)");
-  }
-  return impl_.pass->bindings[i].info;
 }
 
 uint64_t PassContext::resource_version(std::string_view slot) const {
@@ -74,20 +110,6 @@ const BoundResource& PassContext::resource(std::string_view slot) const {
   }
   info(slot);  // checks that the slot exists and is bound
   return impl_.bound[impl_.binding_index(slot)];
-}
-
-double PassContext::number(std::string_view param) const {
-  auto it = impl_.pass->params.find(std::string(param));
-  if (it == impl_.pass->params.end()) {
-    throw std::invalid_argument("pass '" + impl_.pass->name + "' (" + impl_.pass->type +
-                                ") has no parameter '" + std::string(param) + "'");
-  }
-  return it->second.number;
-}
-
-const std::string& PassContext::choice(std::string_view param) const {
-  number(param);  // checks that it exists
-  return impl_.pass->params.at(std::string(param)).text;
 }
 
 bool PassContext::params_changed() const {

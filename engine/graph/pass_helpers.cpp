@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "engine/gpu/context.hpp"
+#include "engine/gpu/image.hpp"
 #include "engine/scene/gpu_scene.hpp"
 
 namespace voxgi::graph {
@@ -38,6 +39,35 @@ gpu::ComputePipeline make_pass_compute(const PassContext& ctx, const std::string
   layout.push_constant_stages = VK_SHADER_STAGE_COMPUTE_BIT;
   return gpu::ComputePipeline(ctx.gpu(), compile_pass_shader(ctx, path, std::move(defines)), layout,
                               ctx.pass_name());
+}
+
+VkExtent3D bound_extent(const ResourceInfo& info) {
+  return info.mip > 0 ? gpu::mip_extent(info.extent, static_cast<uint32_t>(info.mip)) : info.extent;
+}
+
+void check_same_clipmap_layout(PassCheck& check, std::string_view reference,
+                               std::initializer_list<const char*> slots) {
+  if (!check.has(reference)) return;
+  const ResourceInfo& want = check.info(reference);
+  auto text = [](const ResourceInfo& info) {
+    const VkExtent3D e = bound_extent(info);
+    return std::to_string(e.width) + "x" + std::to_string(e.height) + "x" +
+           std::to_string(e.depth) + " in " + std::to_string(info.clipmap_levels) + " level(s)";
+  };
+  for (const char* slot : slots) {
+    if (!check.has(slot)) continue;
+    const ResourceInfo& info = check.info(slot);
+    const VkExtent3D a = bound_extent(info);
+    const VkExtent3D b = bound_extent(want);
+    if (a.width == b.width && a.height == b.height && a.depth == b.depth &&
+        info.clipmap_levels == want.clipmap_levels) {
+      continue;
+    }
+    check.slot_error(slot, "volume '" + info.name + "' is " + text(info) + ", but '" +
+                               std::string(reference) + "' ('" + want.name + "') is " + text(want) +
+                               "; voxel volumes are addressed texel for texel, so "
+                               "both need the same resolution and levels");
+  }
 }
 
 void bind_scene_set(const PassContext& ctx, const gpu::ComputePipeline& pipeline) {

@@ -4,7 +4,9 @@
 // and remembering input versions for skip decisions.
 
 #include <cstdint>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/gpu/pipeline.hpp"
@@ -27,6 +29,14 @@ gpu::ComputePipeline make_pass_compute(const PassContext& ctx, const std::string
 // A 2D image read through a sampler in compute (any format unless `formats` is given).
 SlotSpec sampled_2d_input(const char* name, const char* doc, bool optional = false,
                           std::vector<VkFormat> formats = {});
+
+// A bound resource's extent at the mip its slot is bound to.
+VkExtent3D bound_extent(const ResourceInfo& info);
+
+// For validate hooks. Voxel volumes are addressed texel for texel: reports each bound slot of
+// `slots` whose extent or clipmap levels differ from those of the slot `reference`.
+void check_same_clipmap_layout(PassCheck& check, std::string_view reference,
+                               std::initializer_list<const char*> slots);
 
 // Binds the scene's descriptor set as set 1 of a compute pipeline.
 void bind_scene_set(const PassContext& ctx, const gpu::ComputePipeline& pipeline);

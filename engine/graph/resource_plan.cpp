@@ -58,29 +58,20 @@ constexpr VkAccessFlags2 kWriteAccess =
     VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
 
-// What the synchronisation so far guarantees for one mip of one physical resource.
-struct Track {
-  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
-  VkPipelineStageFlags2 write_stages = 0;  // last write (or layout transition)
-  VkAccessFlags2 write_access = 0;
-  VkPipelineStageFlags2 read_stages = 0;                                  // reads since then
-  std::vector<std::pair<VkPipelineStageFlags2, VkAccessFlags2>> visible;  // where it is visible
-};
-
 struct Need {
   ResourceState state;
   bool reads = false;
   bool writes = false;
 };
 
-bool covered(const Track& t, const ResourceState& s) {
+bool covered(const SyncTrack& t, const ResourceState& s) {
   return std::any_of(t.visible.begin(), t.visible.end(), [&](const auto& v) {
     return (s.stages & ~v.first) == 0 && (s.access & ~v.second) == 0;
   });
 }
 
 // The barrier (if any) taking `t` to `need`, and the track afterwards.
-std::optional<Barrier> transition(Track& t, const Need& need, bool discard, bool is_buffer) {
+std::optional<Barrier> transition(SyncTrack& t, const Need& need, bool discard, bool is_buffer) {
   const ResourceState& s = need.state;
   const bool layout_change = !is_buffer && (discard || s.layout != t.layout);
   std::optional<Barrier> barrier;
@@ -152,12 +143,7 @@ void plan_lifetimes_and_usage(CompiledGraph& g) {
       if (b.resource < 0) continue;
       CompiledResource& r = g.resources[static_cast<size_t>(b.resource)];
       const int index = static_cast<int>(s);
-      if (r.first_pass < 0) {
-        r.first_pass = index;
-        // Transient contents read before being written in the frame come from the last frame.
-        const bool reads = b.is_input || b.spec->access == Access::StorageReadWrite;
-        r.carries_contents = r.info.persistent || reads;
-      }
+      if (r.first_pass < 0) r.first_pass = index;
       r.last_pass = std::max(r.last_pass, index);
       if (r.info.kind == ResourceKind::Buffer) {
         r.buffer_usage |= buffer_usage_for(b.spec->access);
@@ -168,7 +154,8 @@ void plan_lifetimes_and_usage(CompiledGraph& g) {
   }
   for (CompiledResource& r : g.resources) {
     if (r.first_pass < 0) continue;
-    if (r.info.persistent) r.carries_contents = true;
+    // The compiler makes sure a transient's first use writes it.
+    r.carries_contents = r.info.persistent;
     if (r.info.kind == ResourceKind::Buffer) {
       // Transfer destination: persistent buffers are cleared on creation.
       r.buffer_usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;
@@ -241,19 +228,78 @@ uint32_t mip_count(const ResourceInfo& info) {
   return info.kind == ResourceKind::Buffer ? 1 : info.mip_levels;
 }
 
-// One frame through the tracks; the barriers it needs are recorded into the graph.
-void simulate_frame(CompiledGraph& g, std::vector<std::vector<Track>>& tracks) {
+void apply_full_barriers(std::vector<Barrier>& barriers) {
+  constexpr VkAccessFlags2 kAll = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+  std::vector<Barrier> list;
+  Barrier global;
+  global.is_global = true;
+  global.src_stages = global.dst_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  global.src_access = global.dst_access = kAll;
+  list.push_back(global);
+  for (Barrier b : barriers) {
+    if (b.is_buffer || b.old_layout == b.new_layout) continue;  // the global one covers it
+    b.src_stages = b.dst_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    b.src_access = b.dst_access = kAll;
+    list.push_back(b);
+  }
+  barriers = std::move(list);
+}
+
+}  // namespace
+
+size_t barrier_count(const FrameBarriers& frame) {
+  size_t count = frame.frame_start.size() + frame.frame_end.size();
+  for (const std::vector<Barrier>& pass : frame.passes) count += pass.size();
+  return count;
+}
+
+FrameSync::FrameSync(const CompiledGraph& graph) : graph_(&graph) {
+  tracks_.resize(graph.physical.size());
+  last_use_.resize(graph.physical.size());
+  for (size_t p = 0; p < graph.physical.size(); ++p) {
+    tracks_[p].resize(mip_count(graph.physical[p].info));
+    last_use_[p].resize(tracks_[p].size());
+  }
+  // The first frame starts from nothing and finds where each resource ends a frame; the second
+  // starts from there, as every frame after the first does.
+  const std::vector<bool> none(graph.passes.size(), false);
+  plan(none);
+  end_use_ = last_use_;
+  all_passes_frame_ = plan(none);
+}
+
+ResourceState FrameSync::state(size_t physical, uint32_t mip) const {
+  const SyncTrack& t = tracks_.at(physical).at(mip);
+  return ResourceState{t.layout, t.write_stages | t.read_stages, t.write_access};
+}
+
+FrameBarriers FrameSync::plan(const std::vector<bool>& skipped) {
+  const CompiledGraph& g = *graph_;
+  FrameBarriers frame;
+  frame.passes.resize(g.passes.size());
   std::vector<std::vector<bool>> touched(g.resources.size());
   for (size_t r = 0; r < g.resources.size(); ++r) {
     touched[r].assign(mip_count(g.resources[r].info), false);
   }
-  g.frame_start.clear();
-  g.frame_end.clear();
-  for (CompiledPass& pass : g.passes) {
-    pass.barriers.clear();
+  // Moves one mip of a resource to what `need` asks; returns the barrier it takes, if any.
+  auto move = [&](int r, uint32_t m, const Need& need, bool discard) -> std::optional<Barrier> {
+    const CompiledResource& res = g.resources[static_cast<size_t>(r)];
+    const size_t p = static_cast<size_t>(res.physical);
+    last_use_[p][m] = need.state;
+    std::optional<Barrier> b =
+        transition(tracks_[p][m], need, discard, res.info.kind == ResourceKind::Buffer);
+    if (b) {
+      b->resource = r;
+      b->base_mip = m;
+      b->mip_count = 1;
+    }
+    return b;
+  };
+  for (size_t s = 0; s < g.passes.size(); ++s) {
+    if (skipped[s]) continue;
     // Merge what this pass needs per (resource, mip).
     std::map<std::pair<int, uint32_t>, Need> needs;
-    for (const SlotBinding& b : pass.bindings) {
+    for (const SlotBinding& b : g.passes[s].bindings) {
       if (b.resource < 0) continue;
       const ResourceInfo& info = g.resources[static_cast<size_t>(b.resource)].info;
       const uint32_t first = b.info.mip < 0 ? 0 : static_cast<uint32_t>(b.info.mip);
@@ -269,80 +315,64 @@ void simulate_frame(CompiledGraph& g, std::vector<std::vector<Track>>& tracks) {
     }
     for (const auto& [key, need] : needs) {
       const auto [r, m] = key;
-      CompiledResource& res = g.resources[static_cast<size_t>(r)];
-      Track& t = tracks[static_cast<size_t>(res.physical)][m];
+      const CompiledResource& res = g.resources[static_cast<size_t>(r)];
       const bool first_use = !touched[static_cast<size_t>(r)][m];
       touched[static_cast<size_t>(r)][m] = true;
-      const bool discard = first_use && !res.carries_contents;
-      std::optional<Barrier> b =
-          transition(t, need, discard, res.info.kind == ResourceKind::Buffer);
-      if (!b) continue;
-      b->resource = r;
-      b->base_mip = m;
-      b->mip_count = 1;
+      const std::optional<Barrier> b = move(r, m, need, first_use && !res.carries_contents);
       // A carried resource's first transition can happen as the frame starts.
-      append_merged(first_use && res.carries_contents ? g.frame_start : pass.barriers, *b);
+      if (b)
+        append_merged(first_use && res.carries_contents ? frame.frame_start : frame.passes[s], *b);
     }
+    if (g.full_barriers) apply_full_barriers(frame.passes[s]);
   }
   for (const auto& [name, r] : g.outputs) {
-    CompiledResource& res = g.resources[static_cast<size_t>(r)];
+    const CompiledResource& res = g.resources[static_cast<size_t>(r)];
     if (res.physical < 0) continue;
     const bool is_buffer = res.info.kind == ResourceKind::Buffer;
     Need need;
     need.state = state_for(Access::TransferRead, kStageTransfer, res.info.kind, res.info.format);
     need.reads = true;
     for (uint32_t m = 0; m < mip_count(res.info); ++m) {
-      Track& t = tracks[static_cast<size_t>(res.physical)][m];
+      const SyncTrack& t = tracks_[static_cast<size_t>(res.physical)][m];
       // Outputs named twice are transitioned once.
       if (!is_buffer && t.layout == need.state.layout && covered(t, need.state)) continue;
-      std::optional<Barrier> b = transition(t, need, false, is_buffer);
-      if (!b) continue;
-      b->resource = r;
-      b->base_mip = m;
-      append_merged(g.frame_end, *b);
+      if (const std::optional<Barrier> b = move(r, m, need, false))
+        append_merged(frame.frame_end, *b);
     }
   }
-}
-
-void apply_full_barriers(CompiledGraph& g) {
-  constexpr VkAccessFlags2 kAll = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-  for (CompiledPass& pass : g.passes) {
-    std::vector<Barrier> list;
-    Barrier global;
-    global.is_global = true;
-    global.src_stages = global.dst_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    global.src_access = global.dst_access = kAll;
-    list.push_back(global);
-    for (Barrier b : pass.barriers) {
-      if (b.is_buffer || b.old_layout == b.new_layout) continue;  // the global one covers it
-      b.src_stages = b.dst_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-      b.src_access = b.dst_access = kAll;
-      list.push_back(b);
+  // Images a skipped pass left in another layout go back to where every frame ends.
+  for (size_t p = 0; p < end_use_.size(); ++p) {
+    const PhysicalResource& phys = g.physical[p];
+    if (phys.info.kind == ResourceKind::Buffer) continue;
+    for (uint32_t m = 0; m < end_use_[p].size(); ++m) {
+      const ResourceState& end = end_use_[p][m];
+      if (end.layout == VK_IMAGE_LAYOUT_UNDEFINED || tracks_[p][m].layout == end.layout) continue;
+      Need need;
+      need.state = end;
+      need.reads = true;
+      if (const std::optional<Barrier> b = move(phys.resources.back(), m, need, false)) {
+        append_merged(frame.frame_end, *b);
+      }
     }
-    pass.barriers = std::move(list);
   }
+  return frame;
 }
-
-}  // namespace
 
 void plan_resources(CompiledGraph& g, const CompileOptions& options) {
   plan_lifetimes_and_usage(g);
   plan_physical(g, options.alias_transients);
-  std::vector<std::vector<Track>> tracks(g.physical.size());
-  for (size_t p = 0; p < g.physical.size(); ++p) tracks[p].resize(mip_count(g.physical[p].info));
-  // The first run finds where each resource ends a frame; the second starts from there, as
-  // every frame after the first does.
-  simulate_frame(g, tracks);
-  simulate_frame(g, tracks);
+  const FrameSync sync(g);
+  const FrameBarriers& frame = sync.all_passes_frame();
+  g.frame_start = frame.frame_start;
+  g.frame_end = frame.frame_end;
+  for (size_t s = 0; s < g.passes.size(); ++s) g.passes[s].barriers = frame.passes[s];
   for (CompiledResource& r : g.resources) {
     if (r.physical < 0) continue;
     r.end_state.clear();
-    for (const Track& t : tracks[static_cast<size_t>(r.physical)]) {
-      r.end_state.push_back(
-          ResourceState{t.layout, t.write_stages | t.read_stages, t.write_access});
+    for (uint32_t m = 0; m < mip_count(r.info); ++m) {
+      r.end_state.push_back(sync.state(static_cast<size_t>(r.physical), m));
     }
   }
-  if (options.full_barriers) apply_full_barriers(g);
 }
 
 }  // namespace voxgi::graph

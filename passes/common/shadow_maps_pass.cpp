@@ -1,7 +1,7 @@
 // Shadow maps for every shadowed light: an orthographic map fitted to the scene bounds for
 // directional lights, a perspective map covering the cone for spot lights and six cube faces
 // for point lights, all layers of one depth array image. Re-renders only when lights or
-// geometry changed (when its outputs are persistent).
+// geometry changed.
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -120,8 +120,7 @@ class ShadowMapsPass final : public graph::Pass {
 
   std::string skip_reason(const graph::PassContext& ctx) const override {
     const graph::FrameInfo& frame = ctx.frame();
-    const bool persistent = ctx.info("maps").persistent && ctx.info("matrices").persistent;
-    if (!persistent || frame.first_frame || frame.lights_changed || frame.geometry_changed ||
+    if (frame.first_frame || frame.lights_changed || frame.geometry_changed ||
         ctx.params_changed()) {
       return {};
     }
@@ -250,6 +249,7 @@ void register_shadow_maps(graph::Registry& registry) {
        true},
       {"slope_bias", graph::ParamType::Float, 2.0, 0.0, 100.0, {}, "slope-scaled depth bias", true},
   };
+  info.may_skip = true;
   registry.add(std::move(info), [] { return std::make_unique<ShadowMapsPass>(); });
 }
 

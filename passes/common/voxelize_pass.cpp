@@ -65,6 +65,48 @@ bool node_may_move(const scene::Scene& scene, int node) {
   return false;
 }
 
+// 32-bit words of the scratch record of one voxel.
+uint32_t scratch_words_per_voxel(const graph::PassDeclaration& pass) {
+  if (pass.choice("strategy") == "average_rgba8") return kRgba8Words;
+  return pass.has("emission") ? kHdrWordsWithEmission : kHdrWords;
+}
+
+// What the device cannot change: clipmap shape, matching volumes, buffer sizes.
+void validate_voxelize(graph::PassCheck& check) {
+  const graph::ResourceInfo& albedo = check.info("albedo");
+  const uint32_t resolution = albedo.extent.width;
+  const uint32_t levels = albedo.clipmap_levels;
+  if (levels < 1 || levels > kVoxelMaxLevels) {
+    check.slot_error("albedo", "clipmap '" + albedo.name + "' has " + std::to_string(levels) +
+                                   " levels; 1 to " + std::to_string(kVoxelMaxLevels) +
+                                   " are supported");
+  }
+  if (!is_power_of_two(resolution) || resolution < 8) {
+    check.slot_error("albedo", "clipmap '" + albedo.name + "' has resolution " +
+                                   std::to_string(resolution) +
+                                   "; the clipmap needs a power of two of at least 8");
+  }
+  graph::check_same_clipmap_layout(check, "albedo", {"normal", "emission"});
+  const graph::ResourceInfo& info = check.info("clipmap_info");
+  if (info.buffer_size < sizeof(VoxelClipmapInfo)) {
+    check.slot_error("clipmap_info", "buffer '" + info.name + "' holds " +
+                                         std::to_string(info.buffer_size) +
+                                         " bytes; VoxelClipmapInfo needs " +
+                                         std::to_string(sizeof(VoxelClipmapInfo)));
+  }
+  const uint32_t stride = scratch_words_per_voxel(check);
+  const graph::ResourceInfo& scratch = check.info("scratch");
+  const VkDeviceSize row_bytes = VkDeviceSize(resolution) * stride * 4;
+  if (scratch.buffer_size < row_bytes) {
+    check.slot_error("scratch", "buffer '" + scratch.name + "' holds " +
+                                    std::to_string(scratch.buffer_size) + " bytes; at least " +
+                                    std::to_string(row_bytes) + " (one row of R voxels x " +
+                                    std::to_string(stride * 4) + " bytes) is needed, R^3 x that (" +
+                                    std::to_string(row_bytes * resolution * resolution) +
+                                    ") voxelizes a level at once");
+  }
+}
+
 bool intersects(const VoxelBox& a, const VoxelBox& b) {
   return !a.empty() && !b.empty() && glm::all(glm::lessThan(a.min, b.max)) &&
          glm::all(glm::lessThan(b.min, a.max));
@@ -77,46 +119,11 @@ class VoxelizePass final : public graph::Pass {
     resolution_ = albedo.extent.width;
     levels_ = albedo.clipmap_levels;
     const std::string where = "pass '" + ctx.pass_name() + "' (common.voxelize): ";
-    if (levels_ < 1 || levels_ > kVoxelMaxLevels) {
-      throw std::runtime_error(where + "resource '" + albedo.name +
-                               "' field 'levels': " + std::to_string(levels_) + " levels; 1 to " +
-                               std::to_string(kVoxelMaxLevels) + " are supported");
-    }
-    if (!is_power_of_two(resolution_) || resolution_ < 8) {
-      throw std::runtime_error(where + "resource '" + albedo.name +
-                               "' field 'resolution': " + std::to_string(resolution_) +
-                               "; the clipmap needs a power of two of at least 8");
-    }
     has_emission_ = ctx.has("emission");
-    for (const char* slot : {"normal", "emission"}) {
-      if (!ctx.has(slot)) continue;
-      const graph::ResourceInfo& other = ctx.info(slot);
-      if (other.extent.width != resolution_ || other.clipmap_levels != levels_) {
-        throw std::runtime_error(where + "resource '" + other.name + "' (slot " + slot +
-                                 ") must have the resolution and levels of '" + albedo.name +
-                                 "' (" + std::to_string(resolution_) + ", " +
-                                 std::to_string(levels_) + ")");
-      }
-    }
-    const graph::ResourceInfo& info = ctx.info("clipmap_info");
-    if (info.buffer_size < sizeof(VoxelClipmapInfo)) {
-      throw std::runtime_error(
-          where + "resource '" + info.name + "' field 'size': " + std::to_string(info.buffer_size) +
-          " bytes; VoxelClipmapInfo needs " + std::to_string(sizeof(VoxelClipmapInfo)));
-    }
     rgba8_ = ctx.choice("strategy") == "average_rgba8";
-    stride_ = rgba8_ ? kRgba8Words : (has_emission_ ? kHdrWordsWithEmission : kHdrWords);
-    const graph::ResourceInfo& scratch = ctx.info("scratch");
-    const VkDeviceSize row_bytes = VkDeviceSize(resolution_) * stride_ * 4;
-    if (scratch.buffer_size < row_bytes) {
-      throw std::runtime_error(
-          where + "resource '" + scratch.name +
-          "' field 'size': " + std::to_string(scratch.buffer_size) + " bytes; at least " +
-          std::to_string(row_bytes) + " (one row of R voxels x " + std::to_string(stride_ * 4) +
-          " bytes) is needed, R^3 x that (" +
-          std::to_string(row_bytes * resolution_ * resolution_) + ") voxelizes a level at once");
-    }
-    capacity_voxels_ = static_cast<int64_t>(scratch.buffer_size / (VkDeviceSize(stride_) * 4));
+    stride_ = scratch_words_per_voxel(ctx);
+    capacity_voxels_ =
+        static_cast<int64_t>(ctx.info("scratch").buffer_size / (VkDeviceSize(stride_) * 4));
 
     if (!ctx.gpu().features().geometry_shader) {
       throw std::runtime_error(where +
@@ -171,7 +178,7 @@ class VoxelizePass final : public graph::Pass {
   }
 
   std::string skip_reason(const graph::PassContext& ctx) const override {
-    if (!initialized_ || !incremental(ctx) || ctx.params_changed()) return {};
+    if (!initialized_ || ctx.params_changed()) return {};
     const std::vector<glm::ivec3> origins = target_origins(ctx);
     for (uint32_t l = 0; l < levels_; ++l) {
       if (origins[l] != origins_[l]) return {};
@@ -201,13 +208,12 @@ class VoxelizePass final : public graph::Pass {
     }
 
     const std::vector<glm::ivec3> origins = target_origins(ctx);
-    const bool keep = incremental(ctx);
     std::vector<VoxelBox> stale;
     std::vector<bool> full(levels_, false);
-    bool windows_moved = !info_written_ || !keep;  // a transient info buffer loses it
+    bool windows_moved = !info_written_;
     for (uint32_t l = 0; l < levels_; ++l) {
       const int level = static_cast<int>(l);
-      if (!keep || !valid_[l]) {
+      if (!valid_[l]) {
         full[l] = true;
         stale.push_back({level, glm::ivec3(0), glm::ivec3(static_cast<int>(resolution_))});
       } else if (origins[l] != origins_[l]) {
@@ -275,13 +281,6 @@ class VoxelizePass final : public graph::Pass {
   };
 
   double level_size(uint32_t level) const { return voxel_size_ * std::ldexp(1.0, int(level)); }
-
-  bool incremental(const graph::PassContext& ctx) const {
-    bool persistent = ctx.info("albedo").persistent && ctx.info("normal").persistent &&
-                      ctx.info("clipmap_info").persistent;
-    if (has_emission_) persistent = persistent && ctx.info("emission").persistent;
-    return persistent;
-  }
 
   bool follows_camera(const graph::PassContext& ctx) const {
     const std::string& center = ctx.choice("center");
@@ -505,7 +504,8 @@ void register_voxelize(graph::Registry& registry) {
        {},
        false,
        "accumulation records (60 bytes per voxel with emission, 36 without, 12 for "
-       "average_rgba8); R^3 records voxelize a level in one go, fewer split it"},
+       "average_rgba8); R^3 records voxelize a level in one go, fewer split it",
+       true},
   };
   info.params = {
       {"voxel_size",
@@ -545,6 +545,8 @@ void register_voxelize(graph::Registry& registry) {
        "what the windows centre on: auto = the scene for one level, the camera for several",
        false},
   };
+  info.may_skip = true;
+  info.validate = validate_voxelize;
   registry.add(std::move(info), [] { return std::make_unique<VoxelizePass>(); });
 }
 

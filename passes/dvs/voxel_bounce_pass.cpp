@@ -5,7 +5,6 @@
 
 #include <memory>
 #include <optional>
-#include <stdexcept>
 
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/context.hpp"
@@ -38,30 +37,7 @@ struct BouncePush {
 class VoxelBouncePass final : public graph::Pass {
  public:
   void setup(graph::PassContext& ctx) override {
-    int directional = 0;
-    for (const char* slot : kDirectionalSlots) directional += ctx.has(slot) ? 1 : 0;
-    if (directional == 6) {
-      anisotropic_ = true;
-    } else if (ctx.has(kFilteredSlot) && directional == 0) {
-      anisotropic_ = false;
-    } else {
-      throw std::invalid_argument(
-          "pass '" + ctx.pass_name() +
-          "' field 'in': bind either 'filtered' (isotropic) or all six of pos_x, neg_x, pos_y, "
-          "neg_y, pos_z, neg_z (anisotropic) from vct.filter; " +
-          std::to_string(directional) + " directional volume(s) and " +
-          (ctx.has(kFilteredSlot) ? "'filtered'" : "no 'filtered'") + " are bound");
-    }
-    const VkExtent3D out = ctx.info("radiance").extent;
-    for (const char* slot : {"albedo", "normal", "direct"}) {
-      const VkExtent3D e = ctx.info(slot).extent;
-      if (e.width != out.width || e.height != out.height || e.depth != out.depth) {
-        throw std::invalid_argument("pass '" + ctx.pass_name() + "' slot '" + slot + "': '" +
-                                    ctx.info(slot).name + "' and the output 'radiance' ('" +
-                                    ctx.info("radiance").name +
-                                    "') must be the same clipmap layout");
-      }
-    }
+    anisotropic_ = ctx.has(kDirectionalSlots[0]);  // all six or none (validate_voxel_bounce)
     const std::vector<gpu::Binding> bindings = {
         {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0, anisotropic_ ? 6u : 1u},
@@ -79,8 +55,7 @@ class VoxelBouncePass final : public graph::Pass {
   // Every bounce derives from the direct light and the voxels: while those are unchanged the
   // previous result (persistent) is still the answer.
   std::string skip_reason(const graph::PassContext& ctx) const override {
-    if (!ctx.info("radiance").persistent || ctx.frame().first_frame || ctx.params_changed() ||
-        inputs_.changed(ctx)) {
+    if (ctx.frame().first_frame || ctx.params_changed() || inputs_.changed(ctx)) {
       return {};
     }
     return "direct light and voxels unchanged";
@@ -141,6 +116,21 @@ graph::SlotSpec filtered_input(const char* name, std::string doc) {
           {VK_FORMAT_R16G16B16A16_SFLOAT},
           true,
           std::move(doc)};
+}
+
+// One isotropic or six directional volumes, of the voxels' layout.
+void validate_voxel_bounce(graph::PassCheck& check) {
+  int directional = 0;
+  for (const char* slot : kDirectionalSlots) directional += check.has(slot) ? 1 : 0;
+  const bool isotropic = check.has(kFilteredSlot);
+  if (!(directional == 6 && !isotropic) && !(directional == 0 && isotropic)) {
+    check.slot_error(kFilteredSlot,
+                     "bind either 'filtered' (isotropic) or all six of pos_x, neg_x, pos_y, "
+                     "neg_y, pos_z, neg_z (anisotropic) from vct.filter; " +
+                         std::to_string(directional) + " directional volume(s) and " +
+                         (isotropic ? "'filtered'" : "no 'filtered'") + " are bound");
+  }
+  graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "direct"});
 }
 
 }  // namespace
@@ -211,6 +201,8 @@ void register_voxel_bounce(graph::Registry& registry) {
        "distance skipped at the start of each cone, in voxels (self-occlusion)",
        true},
   };
+  info.may_skip = true;
+  info.validate = validate_voxel_bounce;
   registry.add(std::move(info), [] { return std::make_unique<VoxelBouncePass>(); });
 }
 

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/context.hpp"
@@ -37,20 +36,9 @@ struct LightingPush {
 class VoxelLightingPass final : public graph::Pass {
  public:
   void setup(graph::PassContext& ctx) override {
-    const graph::ResourceInfo& info = ctx.info("clipmap_info");
-    if (info.buffer_size < kClipmapInfoSize) {
-      throw std::invalid_argument("pass '" + ctx.pass_name() + "' input 'clipmap_info': buffer '" +
-                                  info.name + "' holds " + std::to_string(info.buffer_size) +
-                                  " bytes, the clipmap info needs " +
-                                  std::to_string(kClipmapInfoSize));
-    }
     has_emission_ = ctx.has("emission");
     has_shadow_maps_ = ctx.has("shadow_maps") && ctx.has("shadow_matrices");
     has_direct_ = ctx.has("direct");
-    check_same_extent(ctx, "albedo");
-    check_same_extent(ctx, "normal");
-    if (has_emission_) check_same_extent(ctx, "emission");
-    if (has_direct_) check_same_extent(ctx, "direct");
     std::vector<gpu::Binding> bindings = {
         {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
@@ -73,8 +61,7 @@ class VoxelLightingPass final : public graph::Pass {
 
   std::string skip_reason(const graph::PassContext& ctx) const override {
     const graph::FrameInfo& frame = ctx.frame();
-    if (!outputs_persistent(ctx) || frame.first_frame || frame.lights_changed ||
-        ctx.params_changed() || inputs_.changed(ctx)) {
+    if (frame.first_frame || frame.lights_changed || ctx.params_changed() || inputs_.changed(ctx)) {
       return {};
     }
     return "voxels, lights and shadow maps unchanged";
@@ -102,7 +89,7 @@ class VoxelLightingPass final : public graph::Pass {
       writer.storage_image(7, storage_view(direct), direct.layout);
     }
 
-    const VkExtent3D extent = mip0_extent(*out.info);
+    const VkExtent3D extent = graph::bound_extent(*out.info);
     LightingPush push{};
     push.size[0] = extent.width;
     push.size[1] = extent.height;
@@ -126,29 +113,6 @@ class VoxelLightingPass final : public graph::Pass {
   }
 
  private:
-  static VkExtent3D mip0_extent(const graph::ResourceInfo& info) {
-    return info.mip > 0 ? gpu::mip_extent(info.extent, static_cast<uint32_t>(info.mip))
-                        : info.extent;
-  }
-
-  // Voxel volumes are addressed texel for texel, so they must match the output's layout.
-  static void check_same_extent(const graph::PassContext& ctx, const char* slot) {
-    const VkExtent3D a = mip0_extent(ctx.info("radiance"));
-    const VkExtent3D b = mip0_extent(ctx.info(slot));
-    if (a.width != b.width || a.height != b.height || a.depth != b.depth) {
-      throw std::invalid_argument(
-          "pass '" + ctx.pass_name() + "' slot '" + slot + "': volume '" + ctx.info(slot).name +
-          "' is " + std::to_string(b.width) + "x" + std::to_string(b.height) + "x" +
-          std::to_string(b.depth) + " but output 'radiance' ('" + ctx.info("radiance").name +
-          "') is " + std::to_string(a.width) + "x" + std::to_string(a.height) + "x" +
-          std::to_string(a.depth) + "; both must be the same clipmap layout");
-    }
-  }
-
-  bool outputs_persistent(const graph::PassContext& ctx) const {
-    return ctx.info("radiance").persistent && (!has_direct_ || ctx.info("direct").persistent);
-  }
-
   bool has_emission_ = false;
   bool has_shadow_maps_ = false;
   bool has_direct_ = false;
@@ -156,6 +120,16 @@ class VoxelLightingPass final : public graph::Pass {
       {"clipmap_info", "albedo", "normal", "emission", "shadow_maps", "shadow_matrices"}};
   std::optional<gpu::ComputePipeline> pipeline_;
 };
+
+void validate_voxel_lighting(graph::PassCheck& check) {
+  const graph::ResourceInfo& info = check.info("clipmap_info");
+  if (info.buffer_size < kClipmapInfoSize) {
+    check.slot_error("clipmap_info",
+                     "buffer '" + info.name + "' holds " + std::to_string(info.buffer_size) +
+                         " bytes, the clipmap info needs " + std::to_string(kClipmapInfoSize));
+  }
+  graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission", "direct"});
+}
 
 }  // namespace
 
@@ -218,6 +192,8 @@ void register_voxel_lighting(graph::Registry& registry) {
        "voxel rays: most samples per ray (half a voxel apart)",
        true},
   };
+  info.may_skip = true;
+  info.validate = validate_voxel_lighting;
   registry.add(std::move(info), [] { return std::make_unique<VoxelLightingPass>(); });
 }
 

@@ -83,14 +83,6 @@ struct ArrayView {
 class PathTracerPass final : public graph::Pass {
  public:
   void setup(graph::PassContext& ctx) override {
-    const graph::ResourceInfo& accumulation = ctx.info("accumulation");
-    if (accumulation.array_layers < kAccumulationLayers) {
-      throw std::runtime_error(
-          "pass '" + ctx.pass_name() + "' field 'out.accumulation': resource '" +
-          accumulation.name + "' needs " + std::to_string(kAccumulationLayers) +
-          " layers (running sums of radiance, direct, indirect and squares), has " +
-          std::to_string(accumulation.array_layers));
-    }
     bvh_ = scene::Bvh::build(ctx.scene());
     gpu_bvh_ = std::make_unique<scene::GpuBvh>(ctx.gpu(), ctx.scene(), bvh_);
     fresh_bvh_ = true;
@@ -149,11 +141,6 @@ class PathTracerPass final : public graph::Pass {
     const graph::BoundResource& indirect = ctx.resource("indirect");
     const graph::BoundResource& variance = ctx.resource("variance");
     const VkExtent3D extent = linear.info->extent;
-    if (accumulation.info->extent.width < extent.width ||
-        accumulation.info->extent.height < extent.height) {
-      throw std::runtime_error("pass '" + ctx.pass_name() +
-                               "' field 'out.accumulation': smaller than the 'linear' output");
-    }
 
     VkCommandBuffer cmd = ctx.cmd();
     const VkSampler sampler = ctx.gpu().sampler(gpu::SamplerKind::LinearRepeat);
@@ -218,6 +205,22 @@ graph::SlotSpec image_output(const char* name, Access access, std::vector<VkForm
           std::move(formats),
           false,
           doc};
+}
+
+void validate_path_tracer(graph::PassCheck& check) {
+  const graph::ResourceInfo& accumulation = check.info("accumulation");
+  if (accumulation.array_layers < kAccumulationLayers) {
+    check.slot_error("accumulation",
+                     "resource '" + accumulation.name + "' needs " +
+                         std::to_string(kAccumulationLayers) +
+                         " layers (running sums of radiance, direct, indirect and squares), has " +
+                         std::to_string(accumulation.array_layers));
+  }
+  const VkExtent3D linear = check.info("linear").extent;
+  if (accumulation.extent.width < linear.width || accumulation.extent.height < linear.height) {
+    check.slot_error("accumulation",
+                     "resource '" + accumulation.name + "' is smaller than the 'linear' output");
+  }
 }
 
 }  // namespace
@@ -303,6 +306,7 @@ void register_path_tracer(graph::Registry& registry) {
        "stop adding samples after this many per pixel (0: never)",
        true},
   };
+  info.validate = validate_path_tracer;
   registry.add(std::move(info), [] { return std::make_unique<PathTracerPass>(); });
 }
 

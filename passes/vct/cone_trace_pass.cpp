@@ -6,7 +6,6 @@
 #include <cmath>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/context.hpp"
@@ -74,11 +73,6 @@ class ConeTracePass final : public graph::Pass {
     half_ = ctx.choice("resolution") == "half";
     has_ao_ = !specular_ && ctx.has("ao");
     has_shadow_ = !specular_ && ctx.has("shadow");
-    if (half_ && !ctx.has("half_res")) {
-      throw std::invalid_argument("pass '" + ctx.pass_name() +
-                                  "' field 'resolution': 'half' needs the output slot 'half_res' "
-                                  "bound to an rgba16f image of half the viewport");
-    }
     const std::vector<gpu::ShaderDefine> defines = {
         {"SPECULAR", specular_ ? "1" : "0"},
         {"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
@@ -236,6 +230,15 @@ class ConeTracePass final : public graph::Pass {
   std::optional<gpu::ComputePipeline> upsample_;
 };
 
+void validate_cone_trace(graph::PassCheck& check) {
+  check_filtered_volumes_bound(check);
+  if (check.choice("resolution") == "half" && !check.has("half_res")) {
+    check.param_error("resolution",
+                      "'half' needs the output slot 'half_res' bound to an rgba16f image of half "
+                      "the viewport");
+  }
+}
+
 graph::SlotSpec filtered_input(const char* name, std::string doc) {
   return {name,
           graph::kinds(graph::ResourceKind::Clipmap),
@@ -387,6 +390,7 @@ void register_cone_trace(graph::Registry& registry) {
                    {VK_FORMAT_R8_UNORM, VK_FORMAT_R16_SFLOAT, VK_FORMAT_R8G8B8A8_UNORM,
                     VK_FORMAT_R16G16B16A16_SFLOAT})};
   info.params = trace_params(false);
+  info.validate = validate_cone_trace;
   registry.add(std::move(info), [] { return std::make_unique<ConeTracePass>(false); });
 }
 
@@ -402,6 +406,7 @@ void register_cone_trace_specular(graph::Registry& registry) {
                   image_output("half_res", "scratch for resolution 'half' (rgba16f, viewport/2)",
                                true, {VK_FORMAT_R16G16B16A16_SFLOAT})};
   info.params = trace_params(true);
+  info.validate = validate_cone_trace;
   registry.add(std::move(info), [] { return std::make_unique<ConeTracePass>(true); });
 }
 

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/context.hpp"
@@ -32,25 +31,12 @@ constexpr uint32_t kLocal = 4;
 class FilterPass final : public graph::Pass {
  public:
   void setup(graph::PassContext& ctx) override {
-    anisotropic_ = require_filtered_volumes(ctx, ctx.choice("mode") == "anisotropic") ==
-                   FilteredVolumes::Anisotropic;
+    anisotropic_ = ctx.choice("mode") == "anisotropic";
     volume_slots_.clear();
     if (anisotropic_) {
       for (const char* slot : kDirectionalSlots) volume_slots_.push_back(slot);
     } else {
       volume_slots_.push_back(kFilteredSlot);
-    }
-    const graph::ResourceInfo& radiance = ctx.info("radiance");
-    for (const std::string& slot : volume_slots_) {
-      const graph::ResourceInfo& out = ctx.info(slot);
-      if (out.extent.width != radiance.extent.width || out.extent.depth != radiance.extent.depth ||
-          out.clipmap_levels != radiance.clipmap_levels) {
-        throw std::invalid_argument("pass '" + ctx.pass_name() + "' field 'out." + slot +
-                                    "': the filtered volume '" + out.name +
-                                    "' must have the resolution and levels of the radiance "
-                                    "clipmap '" +
-                                    radiance.name + "'");
-      }
     }
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0}};
@@ -124,6 +110,21 @@ class FilterPass final : public graph::Pass {
   graph::InputVersions versions_{{"clipmap_info", "radiance"}};
 };
 
+void validate_filter(graph::PassCheck& check) {
+  if (check.choice("mode") == "isotropic") {
+    if (!check.has(kFilteredSlot)) {
+      check.param_error("mode", "mode 'isotropic' needs the output slot 'filtered' bound");
+    }
+  } else if (const std::string missing = unbound_directional_slots(check); !missing.empty()) {
+    check.param_error("mode",
+                      "mode 'anisotropic' needs the output slots pos_x, neg_x, pos_y, neg_y, "
+                      "pos_z, neg_z bound; unbound: " +
+                          missing);
+  }
+  graph::check_same_clipmap_layout(
+      check, "radiance", {kFilteredSlot, "pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"});
+}
+
 graph::SlotSpec filtered_output(const char* name, std::string doc) {
   return {name,
           graph::kinds(graph::ResourceKind::Clipmap),
@@ -164,6 +165,8 @@ void register_filter(graph::Registry& registry) {
                   "isotropic: one box-filtered volume; anisotropic: six directional volumes "
                   "(front-to-back along each axis), needs the six pos_x..neg_z outputs",
                   false}};
+  info.may_skip = true;
+  info.validate = validate_filter;
   registry.add(std::move(info), [] { return std::make_unique<FilterPass>(); });
 }
 

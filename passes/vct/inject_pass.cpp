@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
-#include <stdexcept>
 
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/context.hpp"
@@ -37,16 +36,6 @@ class InjectPass final : public graph::Pass {
   void setup(graph::PassContext& ctx) override {
     has_shadows_ = ctx.has("shadow_maps") && ctx.has("shadow_matrices");
     has_emission_ = ctx.has("emission");
-    const graph::ResourceInfo& out = ctx.info("radiance");
-    for (const char* slot : {"albedo", "normal", "emission"}) {
-      if (!ctx.has(slot)) continue;
-      const graph::ResourceInfo& in = ctx.info(slot);
-      if (in.extent.width != out.extent.width || in.extent.depth != out.extent.depth) {
-        throw std::invalid_argument(
-            "pass '" + ctx.pass_name() + "' field 'in." + slot + "': clipmap '" + in.name +
-            "' must have the resolution and levels of 'out.radiance' ('" + out.name + "')");
-      }
-    }
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
                                           {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
@@ -149,6 +138,10 @@ void register_inject(graph::Registry& registry) {
        "offset of the shadow lookup from the voxel's surface point along its normal (towards "
        "the light for normal-less voxels), in voxels; at least two shadow-map texels",
        true},
+  };
+  info.may_skip = true;
+  info.validate = [](graph::PassCheck& check) {
+    graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission"});
   };
   registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });
 }

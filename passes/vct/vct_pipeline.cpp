@@ -1,7 +1,5 @@
 #include "passes/vct/vct_pipeline.hpp"
 
-#include <stdexcept>
-
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/error.hpp"
 
@@ -43,43 +41,26 @@ graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional
           doc};
 }
 
-FilteredVolumes bound_filtered_volumes(const graph::PassContext& ctx) {
-  bool all_directional = true;
+std::string unbound_directional_slots(const graph::PassDeclaration& pass) {
   std::string missing;
   for (const char* slot : kDirectionalSlots) {
-    if (!ctx.has(slot)) {
-      all_directional = false;
-      missing += std::string(missing.empty() ? "" : ", ") + slot;
-    }
+    if (!pass.has(slot)) missing += std::string(missing.empty() ? "" : ", ") + slot;
   }
-  if (all_directional) return FilteredVolumes::Anisotropic;
-  if (ctx.has(kFilteredSlot)) return FilteredVolumes::Isotropic;
-  throw std::invalid_argument("pass '" + ctx.pass_name() +
-                              "': bind either slot 'filtered' (isotropic) or all six directional "
-                              "slots pos_x..neg_z (anisotropic); unbound: filtered, " +
-                              missing);
+  return missing;
 }
 
-FilteredVolumes require_filtered_volumes(const graph::PassContext& ctx, bool want_anisotropic) {
-  if (!want_anisotropic) {
-    if (!ctx.has(kFilteredSlot)) {
-      throw std::invalid_argument("pass '" + ctx.pass_name() +
-                                  "' field 'mode': mode 'isotropic' needs the output slot "
-                                  "'filtered' bound");
-    }
-    return FilteredVolumes::Isotropic;
-  }
-  std::string missing;
-  for (const char* slot : kDirectionalSlots) {
-    if (!ctx.has(slot)) missing += std::string(missing.empty() ? "" : ", ") + slot;
-  }
-  if (!missing.empty()) {
-    throw std::invalid_argument("pass '" + ctx.pass_name() +
-                                "' field 'mode': mode 'anisotropic' needs the output slots "
-                                "pos_x, neg_x, pos_y, neg_y, pos_z, neg_z bound; unbound: " +
-                                missing);
-  }
-  return FilteredVolumes::Anisotropic;
+FilteredVolumes bound_filtered_volumes(const graph::PassDeclaration& pass) {
+  return unbound_directional_slots(pass).empty() ? FilteredVolumes::Anisotropic
+                                                 : FilteredVolumes::Isotropic;
+}
+
+void check_filtered_volumes_bound(graph::PassCheck& check) {
+  const std::string missing = unbound_directional_slots(check);
+  if (missing.empty() || check.has(kFilteredSlot)) return;
+  check.slot_error(kFilteredSlot,
+                   "bind either slot 'filtered' (isotropic) or all six directional slots "
+                   "pos_x..neg_z (anisotropic); unbound: filtered, " +
+                       missing);
 }
 
 }  // namespace voxgi::passes::vct

@@ -22,12 +22,14 @@ inline constexpr const char* kFilteredSlot = "filtered";
 inline constexpr std::array<const char*, 6> kDirectionalSlots = {"pos_x", "neg_x", "pos_y",
                                                                  "neg_y", "pos_z", "neg_z"};
 
-// Which filtered volumes a pass has bound. Throws std::invalid_argument naming the pass and
-// the missing slots when neither the isotropic volume nor all six directional ones are bound
-// (or, with `want_anisotropic` set, when the six are not all bound).
+// The directional slots left unbound, comma-separated; empty when all six are bound.
+std::string unbound_directional_slots(const graph::PassDeclaration& pass);
+// Which filtered volumes a pass reads: the six directional ones when all are bound, else the
+// isotropic one (check_filtered_volumes_bound makes sure one of the two is).
 enum class FilteredVolumes { Isotropic, Anisotropic };
-FilteredVolumes bound_filtered_volumes(const graph::PassContext& ctx);
-FilteredVolumes require_filtered_volumes(const graph::PassContext& ctx, bool want_anisotropic);
+FilteredVolumes bound_filtered_volumes(const graph::PassDeclaration& pass);
+// For validate hooks of passes reading the filtered volumes.
+void check_filtered_volumes_bound(graph::PassCheck& check);
 
 // The sampler lib/cone_trace.glsl needs for the filtered volumes: linear, whole mips,
 // REPEAT, no anisotropic filtering. Owned by the pass that creates it.

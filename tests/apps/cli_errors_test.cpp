@@ -110,6 +110,72 @@ TEST_F(VoxgiCli, GraphCheckRejectsABrokenCopyNamingIt) {
       << r.describe();
 }
 
+// "file:line:col" of the first `part` at or after `anchor` in `text`.
+std::string location_of(const std::string& file, const std::string& text, const std::string& anchor,
+                        const std::string& part) {
+  const size_t at = text.find(part, text.find(anchor));
+  if (at == std::string::npos) return file + ": '" + part + "' not found";
+  const size_t line_start = text.rfind('\n', at) + 1;  // npos + 1 = 0 on the first line
+  const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+  return file + ":" + std::to_string(line) + ":" + std::to_string(at - line_start + 1);
+}
+
+std::string vct_graph_text() {
+  return read_text(std::filesystem::path(VOXGI_SOURCE_DIR) / "graphs" / "vct.json");
+}
+
+// graphs/vct.json with the vct.* volumes transient: injection and filtering may skip frames,
+// which would leave them undefined, so the graph is refused before any frame.
+TEST_F(VoxgiCli, GraphCheckRefusesTransientOutputsOfPassesThatMaySkip) {
+  std::string text = vct_graph_text();
+  const std::string persistent = ", \"persistent\": true";
+  for (size_t at = text.find("\"vct."); at != std::string::npos; at = text.find("\"vct.", at + 1)) {
+    const size_t end = text.find(" }", at);  // "${...}" inside the declaration has no space
+    const size_t flag = text.find(persistent, at);
+    if (flag < end) text.erase(flag, persistent.size());
+  }
+  write_text(dir_ / "transient.json", text);
+  const ProcessResult r = voxgi({"graph", "check", "transient.json"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(
+      r, {location_of("transient.json", text, "\"name\": \"inject\"", "\"vct.radiance\"") +
+              ": error: pass 'inject' field 'out.radiance': pass type 'vct.inject' may skip",
+          "resource 'vct.radiance' (line " + std::to_string(line_of(text, "\"vct.radiance\":")) +
+              ") is transient",
+          "mark it \"persistent\": true",
+          location_of("transient.json", text, "\"name\": \"filter\"", "\"vct.pos_x\"") +
+              ": error: pass 'filter' field 'out.pos_x'"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
+// Half-resolution cone tracing needs its scratch image: found by `graph check`, not at render.
+TEST_F(VoxgiCli, GraphCheckRefusesHalfResolutionWithoutHalfRes) {
+  std::string text = vct_graph_text();
+  const size_t trace = text.find("\"name\": \"cone_trace\"");
+  const std::string full = "\"resolution\": \"full\"";
+  const std::string scratch = ",\n               \"half_res\": \"gi.half\"";
+  ASSERT_NE(text.find(full, trace), std::string::npos);
+  ASSERT_NE(text.find(scratch, trace), std::string::npos) << "graphs/vct.json changed";
+  text.replace(text.find(full, trace), full.size(), "\"resolution\": \"half\"");
+  text.erase(text.find(scratch, trace), scratch.size());
+  write_text(dir_ / "half.json", text);
+  const ProcessResult r = voxgi({"graph", "check", "half.json"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(
+      r, {location_of("half.json", text, "\"name\": \"cone_trace\"", "\"half\"") +
+          ": error: pass 'cone_trace' field 'params.resolution': 'half' needs the output slot "
+          "'half_res' bound"}));
+  // The same through --set, located there.
+  std::string no_scratch = vct_graph_text();
+  no_scratch.erase(no_scratch.find(scratch), scratch.size());
+  write_text(dir_ / "no-scratch.json", no_scratch);
+  const ProcessResult over =
+      voxgi({"graph", "check", "no-scratch.json", "--set", "cone_trace.resolution=half"});
+  EXPECT_TRUE(exited_with(over, kError));
+  EXPECT_TRUE(stderr_has(over, {"--set cone_trace.resolution=half: error: pass 'cone_trace' "
+                                "field 'params.resolution': 'half' needs"}));
+}
+
 // ---- --set --------------------------------------------------------------------------------
 
 // --set keys are checked against the graph, in the compiler, so they fail like a graph error.

@@ -101,6 +101,7 @@ void register_voxel_source(graph::Registry& registry, std::shared_ptr<VoxelSourc
       volume_output("normal", VK_FORMAT_R16G16B16A16_SFLOAT, false),
       volume_output("emission", VK_FORMAT_R16G16B16A16_SFLOAT, true),
   };
+  info.may_skip = true;
   registry.add(std::move(info), [data] { return std::make_unique<VoxelSourcePass>(data); });
 }
 

@@ -14,13 +14,7 @@ using test::make_registry;
 CompiledGraph compile_graph(const std::string& resources, const std::string& passes,
                             CompileOptions options = {}) {
   static const Registry registry = make_registry();
-  return compile_text(R"({ "resources": {
-    "hdr": { "type": "image2d", "format": "rgba16f", "size": 8 },
-    "ldr": { "type": "image2d", "format": "rgba8", "size": 8 },)" +
-                          resources + R"( },
-  "passes": [)" + passes + R"(],
-  "outputs": { "display": "ldr" } })",
-                      registry, options);
+  return compile_text(test::graph_text(resources, passes), registry, options);
 }
 
 std::vector<std::string> schedule(const CompiledGraph& g) {

@@ -13,23 +13,11 @@ using test::compile_text;
 using test::make_registry;
 
 std::vector<std::string> errors_of(const std::string& text, CompileOptions options = {}) {
-  const Registry registry = make_registry();
-  try {
-    compile_text(text, registry, options);
-  } catch (const GraphError& e) {
-    std::vector<std::string> lines;
-    for (const Diagnostic& d : e.diagnostics()) lines.push_back(format(d));
-    return lines;
-  }
-  ADD_FAILURE() << "graph compiled without errors:\n" << text;
-  return {};
+  return test::compile_errors(text, make_registry(), options);
 }
 
-// The one error a graph must produce.
 std::string single_error(const std::string& text, CompileOptions options = {}) {
-  const std::vector<std::string> errors = errors_of(text, options);
-  EXPECT_EQ(errors.size(), 1u) << ::testing::PrintToString(errors);
-  return errors.empty() ? std::string() : errors.front();
+  return test::single_compile_error(text, make_registry(), options);
 }
 
 // A valid graph: line 1 "{", extra resources from line 7, passes right after them (line 9

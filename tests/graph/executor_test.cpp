@@ -123,7 +123,7 @@ class ComposePass : public Pass {
   std::unique_ptr<gpu::ComputePipeline> pipeline_;
 };
 
-Registry make_exec_registry() {
+Registry make_exec_registry(bool accumulate_may_skip = true) {
   Registry r;
   constexpr ResourceKinds buffer = test::kBuffer;
   constexpr ResourceKinds image = test::kImage2D;
@@ -135,6 +135,7 @@ Registry make_exec_registry() {
   PassTypeInfo acc;
   acc.type = "exec.accumulate";
   acc.outputs = {slot("acc", image, Access::StorageReadWrite, kStageCompute)};
+  acc.may_skip = accumulate_may_skip;
   r.add(acc, [] { return std::make_unique<AccumulatePass>(); });
   PassTypeInfo compose;
   compose.type = "exec.compose";
@@ -145,6 +146,9 @@ Registry make_exec_registry() {
   ParamSpec scale = param("scale", ParamType::Float, 1.0, 0.0, 10.0);
   scale.live = false;
   compose.params = {scale};
+  compose.validate = [](PassCheck& check) {
+    if (check.number("scale") == 0.0) check.param_error("scale", "0 would zero the result");
+  };
   r.add(compose, [] { return std::make_unique<ComposePass>(); });
   return r;
 }
@@ -182,13 +186,42 @@ class ExecutorTest : public voxgi::test::GpuTest {
     GpuTest::TearDown();
   }
 
-  Executor& build(CompileOptions options = {}) {
+  Executor& build(CompileOptions options = {}) { return build(compile_exec_graph(options)); }
+
+  CompiledGraph compile_exec_graph(CompileOptions options = {}) {
     options.viewport_width = kSize;
     options.viewport_height = kSize;
-    const CompiledGraph graph = compile(parse_graph(kGraph, "exec.json"), registry_, options);
+    return compile(parse_graph(kGraph, "exec.json"), registry_, options);
+  }
+
+  Executor& build(const CompiledGraph& graph) {
     if (!executor_) executor_ = std::make_unique<Executor>(context(), *shaders_, registry_);
     executor_->build(graph, scene_, *gpu_scene_);
     return *executor_;
+  }
+
+  // Barriers of the executor's last frame on `resource`.
+  size_t barriers_on(Executor& executor, const std::string& resource) {
+    const int r = executor.compiled().find_resource(resource);
+    const FrameBarriers& frame = executor.frame_barriers();
+    size_t count = 0;
+    auto scan = [&](const std::vector<Barrier>& list) {
+      for (const Barrier& b : list) count += b.resource == r ? 1 : 0;
+    };
+    scan(frame.frame_start);
+    for (const std::vector<Barrier>& pass : frame.passes) scan(pass);
+    scan(frame.frame_end);
+    return count;
+  }
+
+  // The message of the exception render() throws, or "" when it throws none.
+  std::string render_error(Executor& executor) {
+    try {
+      executor.render({});
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return {};
   }
 
   // Red channel of texel i of the output.
@@ -249,6 +282,55 @@ TEST_F(ExecutorTest, SkippedPassIsReportedAndPersistentContentsStay) {
   EXPECT_EQ(executor.frame_index(), 3u);
 }
 
+// A skipped pass gets no barriers, and neither does what it would have written: the frame after
+// accumulate's last run still makes that write visible to compose, the next touches history not
+// at all. Synchronisation validation checks both.
+TEST_F(ExecutorTest, SkippedPassRecordsNoBarrierForWhatItWouldWrite) {
+  Executor& executor = build();
+  render_and_read(executor);
+  const size_t every_pass = barrier_count(executor.frame_barriers());
+  EXPECT_EQ(every_pass, barrier_count(FrameSync(executor.compiled()).all_passes_frame()));
+  render_and_read(executor);
+  EXPECT_EQ(barriers_on(executor, "history"), 1u);
+  const std::vector<float> third = render_and_read(executor);
+  EXPECT_EQ(barriers_on(executor, "history"), 0u);
+  EXPECT_LT(barrier_count(executor.frame_barriers()), every_pass);
+  EXPECT_FLOAT_EQ(third[1], 1.0f);  // still the first frame's accumulation
+}
+
+TEST_F(ExecutorTest, RefusesASkipItsTypeDoesNotDeclare) {
+  registry_ = make_exec_registry(/*accumulate_may_skip=*/false);
+  Executor& executor = build();
+  render_and_read(executor);
+  const std::string error = render_error(executor);
+  EXPECT_NE(error.find("pass 'accumulate' (exec.accumulate) reported a skip (\"nothing "
+                       "changed\"), but its type does not declare may_skip"),
+            std::string::npos)
+      << error;
+}
+
+TEST_F(ExecutorTest, RefusesASkipThatLeavesATransientUndefined) {
+  // The compiler rejects such a graph; one put together otherwise still meets the executor.
+  CompiledGraph graph = compile_exec_graph();
+  const int history = graph.find_resource("history");
+  graph.resources[static_cast<size_t>(history)].info.persistent = false;
+  for (CompiledPass& pass : graph.passes) {
+    for (SlotBinding& b : pass.bindings) {
+      if (b.resource == history) b.info.persistent = false;
+    }
+  }
+  Executor& executor = build(graph);
+  render_and_read(executor);  // the first frame runs every pass
+  const std::string error = render_error(executor);
+  EXPECT_NE(error.find("pass 'accumulate' (exec.accumulate) reported a skip"), std::string::npos)
+      << error;
+  EXPECT_NE(error.find("writes the transient resource 'history' (slot 'acc')"), std::string::npos)
+      << error;
+  // Nothing of the refused frame was recorded: the next one with no skip renders cleanly.
+  EXPECT_NO_THROW(build());
+  render_and_read(*executor_);
+}
+
 TEST_F(ExecutorTest, ResourceVersionsCountExecutedWritersOnly) {
   Executor& executor = build();
   render_and_read(executor);
@@ -277,6 +359,15 @@ TEST_F(ExecutorTest, LiveAndNonLiveParameterChanges) {
   EXPECT_FLOAT_EQ(rgba[0], 5.0f);
 
   EXPECT_THROW(executor.set_param("compose.scale", "11"), GraphError);
+  // The type's validate hook sees every change; a refused value is not kept.
+  try {
+    executor.set_param("compose.scale", "0");
+    ADD_FAILURE() << "scale 0 was accepted";
+  } catch (const GraphError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "error: pass 'compose' field 'params.scale': 0 would zero the result");
+  }
+  EXPECT_DOUBLE_EQ(executor.compiled().find_pass("compose")->params.at("scale").number, 0.5);
   EXPECT_THROW(executor.set_param("fill.valeu", "1"), GraphError);
   try {
     executor.set_param("fill.valeu", "1");

@@ -2,8 +2,11 @@
 // Pass types for compiler tests: real declarations, registered straight into a Registry. The
 // compiler only reads their PassTypeInfo; these tests never execute them.
 
+#include <gtest/gtest.h>
+
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "engine/graph/compiler.hpp"
 #include "engine/graph/graph_desc.hpp"
@@ -94,6 +97,40 @@ inline CompiledGraph compile_text(const std::string& text, const Registry& regis
     options.viewport_height = 32;
   }
   return compile(parse_graph(text, kTestFile), registry, options);
+}
+
+// A graph file with the images "hdr" (rgba16f) and "ldr" (rgba8, the output "display") of
+// 8x8 texels, the given further resources (each ending in a comma) and passes.
+inline std::string graph_text(const std::string& resources, const std::string& passes) {
+  return R"({ "resources": {
+    "hdr": { "type": "image2d", "format": "rgba16f", "size": 8 },
+    "ldr": { "type": "image2d", "format": "rgba8", "size": 8 },)" +
+         resources + R"( },
+  "passes": [)" +
+         passes + R"(],
+  "outputs": { "display": "ldr" } })";
+}
+
+// Every error compiling `text` gives, formatted; a test failure when it compiles.
+inline std::vector<std::string> compile_errors(const std::string& text, const Registry& registry,
+                                               CompileOptions options = {}) {
+  try {
+    compile_text(text, registry, options);
+  } catch (const GraphError& e) {
+    std::vector<std::string> lines;
+    for (const Diagnostic& d : e.diagnostics()) lines.push_back(format(d));
+    return lines;
+  }
+  ADD_FAILURE() << "graph compiled without errors:\n" << text;
+  return {};
+}
+
+// The one error compiling `text` must give.
+inline std::string single_compile_error(const std::string& text, const Registry& registry,
+                                        CompileOptions options = {}) {
+  const std::vector<std::string> errors = compile_errors(text, registry, options);
+  EXPECT_EQ(errors.size(), 1u) << ::testing::PrintToString(errors);
+  return errors.empty() ? std::string() : errors.front();
 }
 
 }  // namespace voxgi::graph::test

@@ -217,7 +217,8 @@ TEST_F(FilterBehaviourTest, SkipsWhileTheRadianceIsUnchanged) {
   EXPECT_EQ(graph.skipped("filter"), "");
 }
 
-// A mode whose outputs are not bound is a clear error naming the pass and the field.
+// A mode whose outputs are not bound is a compile error naming the pass, the field and where
+// the mode was set.
 TEST_F(FilterBehaviourTest, ModeWithoutItsOutputsNamesTheField) {
   VolumeData data;
   data.info = make_clipmap_info(kR, 1, 0.25f, glm::vec3(0.0f));
@@ -228,7 +229,10 @@ TEST_F(FilterBehaviourTest, ModeWithoutItsOutputsNamesTheField) {
     FAIL() << "expected an error";
   } catch (const std::exception& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find("pass 'filter' field 'mode'"), std::string::npos) << message;
+    EXPECT_NE(message.find("--set filter.mode=anisotropic: error: pass 'filter' field "
+                           "'params.mode'"),
+              std::string::npos)
+        << message;
     EXPECT_NE(message.find("pos_x"), std::string::npos) << message;
   }
 }

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <string>
+#include <vector>
 
 #include "engine/scene/scene_builder.hpp"
 #include "tests/common/render_harness.hpp"
@@ -177,6 +179,49 @@ TEST_F(VctGraphTest, CornellBleedsTheRightColourAndIsStable) {
       EXPECT_TRUE(t.skipped.empty());
     }
   }
+}
+
+// A static frame (the third of a static scene) records no barrier on what the skipped passes
+// write: shadow maps, voxel volumes, radiance and the filtered volumes stay as the first frame
+// left them, which the validation layers (synchronisation included) check.
+TEST_F(VctGraphTest, StaticFrameRecordsNoBarrierOnTheVoxelVolumes) {
+  RenderSetup setup = dense_vct_setup();
+  setup.scene = "cornell";
+  setup.width = setup.height = 64;
+  RenderHarness harness(setup);
+  graph::Executor& executor = harness.executor();
+  harness.render();
+  const size_t first = graph::barrier_count(executor.frame_barriers());
+  const RenderedImage first_image = harness.output("linear");
+  harness.render(2);
+  for (const auto& t : executor.timings()) {
+    const bool may_skip =
+        t.pass == "shadows" || t.pass == "voxelize" || t.pass == "inject" || t.pass == "filter";
+    EXPECT_EQ(t.skipped.empty(), !may_skip) << t.pass << ": " << t.skipped;
+  }
+  const graph::CompiledGraph& g = executor.compiled();
+  const graph::FrameBarriers& frame = executor.frame_barriers();
+  std::vector<std::string> touched;
+  auto scan = [&](const std::vector<graph::Barrier>& list) {
+    for (const graph::Barrier& b : list) {
+      touched.push_back(g.resources[static_cast<size_t>(b.resource)].info.name);
+    }
+  };
+  scan(frame.frame_start);
+  for (const std::vector<graph::Barrier>& pass : frame.passes) scan(pass);
+  scan(frame.frame_end);
+  for (const std::string& name : touched) {
+    EXPECT_NE(name.rfind("voxel.", 0), 0u) << name;
+    EXPECT_NE(name.rfind("vct.", 0), 0u) << name;
+    EXPECT_NE(name.rfind("shadow.", 0), 0u) << name;
+  }
+  std::printf("graph barriers: %zu in the first frame, %zu in a static frame\n", first,
+              touched.size());
+  EXPECT_LT(touched.size(), first);
+  const RenderedImage still = harness.output("linear");
+  ASSERT_EQ(still.rgba.size(), first_image.rgba.size());
+  EXPECT_EQ(std::memcmp(still.rgba.data(), first_image.rgba.data(), first_image.rgba.size() * 4), 0)
+      << "a static frame differs from the first";
 }
 
 // Half resolution with depth- and normal-aware upsampling stays close to full resolution:

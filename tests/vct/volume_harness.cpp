@@ -125,6 +125,7 @@ void register_volume_pass(graph::Registry& registry, const VolumeData* data) {
       transfer_output("clipmap_info", graph::kinds(graph::ResourceKind::Buffer), false),
       transfer_output("albedo", clipmap, true), transfer_output("normal", clipmap, true),
       transfer_output("emission", clipmap, true), transfer_output("radiance", clipmap, true)};
+  info.may_skip = true;
   registry.add(std::move(info), [data] { return std::make_unique<VolumePass>(data); });
 }
 

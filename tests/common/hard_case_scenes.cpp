@@ -30,6 +30,21 @@ Light point_light(float intensity) {
   return light;
 }
 
+void add_closed_box(SceneBuilder& builder, glm::vec3 lo, glm::vec3 hi, float thickness,
+                    int material) {
+  const glm::vec3 c = 0.5f * (lo + hi);
+  const glm::vec3 size = hi - lo + glm::vec3(2.0f * thickness);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int side = 0; side < 2; ++side) {
+      glm::vec3 centre = c;
+      centre[axis] = side == 0 ? lo[axis] - 0.5f * thickness : hi[axis] + 0.5f * thickness;
+      glm::vec3 extent = size;
+      extent[axis] = thickness;
+      builder.add_box("wall", centre, extent, material);
+    }
+  }
+}
+
 scene::Scene lit_floor(const std::string& name, glm::vec3 offset, float scale, glm::vec3 eye,
                        const char* camera, const Material& surface) {
   SceneBuilder b(name);
@@ -56,6 +71,17 @@ scene::Scene degenerate_triangles(const Material& surface) {
   b.add_mesh("bad", v, {0, 1, 2, 3, 4, 5, 6, 7, 8}, white);
   b.add_light(point_light(5.0f), {0, 1, 0});
   b.add_camera("top", {0, 3, 0.01f}, {0, 0, 0}, 0.8f);
+  return b.finish();
+}
+
+scene::Scene thin_wall(const Material& surface) {
+  SceneBuilder b("thin_wall");
+  const int white = b.add_material(surface);
+  b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white);
+  b.add_quad("wall_minus_x", {0, 0, -1}, {0, 0, 2}, {0, 1, 0}, white);
+  b.add_quad("wall_plus_x", {0.001f, 0, -1}, {0, 1, 0}, {0, 0, 2}, white);
+  b.add_light(point_light(5.0f), {-0.5f, 0.6f, 0});
+  b.add_camera("top", {0.5f, 2.5f, 0.01f}, {0, 0, 0}, 0.9f);
   return b.finish();
 }
 

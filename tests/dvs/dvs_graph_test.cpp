@@ -183,18 +183,7 @@ struct HardCase {
 std::vector<HardCase> hard_cases() {
   return {
       {"degenerate_triangles_and_zero_normals", [] { return degenerate_triangles(); }},
-      {"thin_wall_normals_cancel",
-       [] {
-         SceneBuilder b("thin_wall");
-         const int white = b.add_material(matte(glm::vec3(0.8f)));
-         b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white);
-         // Two faces 1 mm apart with opposite normals: one voxel holds both.
-         b.add_quad("wall_a", {0, 0, -1}, {0, 1, 0}, {0, 0, 2}, white);
-         b.add_quad("wall_b", {0.001f, 0, -1}, {0, 0, 2}, {0, 1, 0}, white);
-         b.add_light(point_light(5.0f), {-0.5f, 0.6f, 0});
-         b.add_camera("top", {0.5f, 2.5f, 0.01f}, {0, 0, 0}, 0.9f);
-         return b.finish();
-       }},
+      {"thin_wall_normals_cancel", [] { return thin_wall(); }},
       {"light_on_a_surface_and_inside_geometry", light_on_a_surface_and_inside_geometry},
       {"very_bright_and_very_dim_emitters_only",
        [] {

@@ -1,37 +1,9 @@
 #include "tests/vct/vct_scenes.hpp"
 
 #include "engine/scene/scene_builder.hpp"
+#include "tests/common/hard_case_scenes.hpp"
 
 namespace voxgi::test {
-namespace {
-
-scene::Material matte(glm::vec3 albedo, glm::vec3 emissive = glm::vec3(0.0f)) {
-  scene::Material m;
-  m.name = "matte";
-  m.base_color = glm::vec4(albedo, 1.0f);
-  m.metallic = 0.0f;
-  m.roughness = 1.0f;
-  m.emissive = emissive;
-  return m;
-}
-
-// Six slabs `thickness` thick around the box [lo, hi].
-void add_closed_box(scene::SceneBuilder& b, glm::vec3 lo, glm::vec3 hi, float thickness,
-                    int material) {
-  const glm::vec3 c = 0.5f * (lo + hi);
-  const glm::vec3 size = hi - lo + glm::vec3(2.0f * thickness);
-  for (int axis = 0; axis < 3; ++axis) {
-    for (int side = 0; side < 2; ++side) {
-      glm::vec3 centre = c;
-      centre[axis] = side == 0 ? lo[axis] - 0.5f * thickness : hi[axis] + 0.5f * thickness;
-      glm::vec3 extent = size;
-      extent[axis] = thickness;
-      b.add_box("wall", centre, extent, material);
-    }
-  }
-}
-
-}  // namespace
 
 scene::Scene furnace_box(float le, bool metal_floor) {
   scene::SceneBuilder b("furnace");

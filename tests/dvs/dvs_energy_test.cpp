@@ -1,0 +1,92 @@
+// graphs/dvs.json end to end (voxelization, voxel lighting, filtering, voxel bounces, cone
+// gather) against indirect light that does not come from the renderer: a receiver facing a lit
+// square (closed form under a directional light, a numerical integral under a point light) with
+// no voxel bounce, a closed box (radiosity) with 0, 1 and 2 voxel bounces, and the path tracer
+// limited to the same bounces on the Cornell box and a thin wall, bounce by bounce. References
+// and scenes: tests/common/gi_energy.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <tuple>
+
+#include "tests/common/gi_energy.hpp"
+#include "tests/gpu/gpu_test_env.hpp"
+
+namespace voxgi::test {
+namespace {
+
+class DvsAnalyticTest : public GpuTest, public ::testing::WithParamInterface<uint32_t> {};
+
+TEST_P(DvsAnalyticTest, ReceiverOverASquareUnderADirectionalLight) {
+  expect_lit_square_matches_closed_form(dvs_gi_setup(GetParam(), 0), SquareLight::Directional);
+}
+
+TEST_P(DvsAnalyticTest, ReceiverOverASquareUnderAPointLight) {
+  expect_lit_square_matches_closed_form(dvs_gi_setup(GetParam(), 0), SquareLight::Point);
+}
+
+TEST_P(DvsAnalyticTest, ClosedBoxUnderAPointLightPerBounce) {
+  const BoxRadiosity radiosity(12, 3);
+  for (int bounces = 0; bounces <= 2; ++bounces) {
+    expect_lit_box_matches_radiosity(dvs_gi_setup(GetParam(), bounces), radiosity);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Voxels, DvsAnalyticTest, ::testing::Values(32u, 64u),
+                         [](const auto& param_info) {
+                           return voxel_resolution_name(param_info.param);
+                         });
+
+// (scene index in energy_bound_scenes(), voxel resolution, cones of the gather and the bounces)
+class DvsEnergyBoundTest : public GpuTest,
+                           public ::testing::WithParamInterface<std::tuple<size_t, uint32_t, int>> {
+};
+
+constexpr int kMaxVoxelBounces = 3;
+
+// K voxel bounces hold K + 1 indirect bounces. Each K stays within the path tracer limited to
+// K + 1 indirect bounces, and what the K-th voxel bounce adds stays within what the path
+// tracer's (K + 1)-th indirect bounce adds (the feedback is no stronger than the light's):
+// tolerance 10% of that gain plus two standard errors of the difference of the two path-traced
+// means (taken as independent, which overstates the noise of paths that share their seeds).
+TEST_P(DvsEnergyBoundTest, EveryBounceStaysWithinThePathTracer) {
+  const auto [scene_index, resolution, cones] = GetParam();
+  const EnergyBoundScene bound_scene = energy_bound_scenes().at(scene_index);
+  const scene::Scene scene = bound_scene.make();
+  PathTracedMean reference[kMaxVoxelBounces + 1];
+  double rendered[kMaxVoxelBounces + 1];
+  for (int k = 0; k <= kMaxVoxelBounces; ++k) {
+    const VoxelGiSetup gi = dvs_gi_setup(resolution, k, cones);
+    reference[k] = path_traced_mean_indirect(scene, kEnergyBoundImageSize, gi.indirect_bounces,
+                                             kEnergyBoundSamplesPerPixel);
+    rendered[k] = render_mean_indirect(gi, scene, kEnergyBoundImageSize);
+    const std::string label = std::string(bound_scene.name) + ", " + gi.label;
+    expect_within_energy_bound(label, rendered[k], reference[k]);
+    if (k == 0) continue;
+    const double gain = rendered[k] - rendered[k - 1];
+    const double reference_gain = reference[k].luminance - reference[k - 1].luminance;
+    const double noise =
+        2.0 * std::hypot(reference[k].standard_error, reference[k - 1].standard_error);
+    std::printf(
+        "[bounce gain] %s: voxel bounce %d adds %.5f, path tracer %.5f (+- %.5f), "
+        "ratio %.4f\n",
+        label.c_str(), k, gain, reference_gain, noise, gain / reference_gain);
+    EXPECT_LE(gain, (1.0 + kEnergyBoundTolerance) * reference_gain + noise) << label;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Voxels, DvsEnergyBoundTest,
+    ::testing::Combine(::testing::Range(size_t{0}, energy_bound_scenes().size()),
+                       ::testing::Values(32u, 64u), ::testing::Values(4, 9, 16)),
+    [](const auto& param_info) {
+      return std::string(energy_bound_scenes().at(std::get<0>(param_info.param)).name) + "_" +
+             voxel_resolution_name(std::get<1>(param_info.param)) + "_cones" +
+             std::to_string(std::get<2>(param_info.param));
+    });
+
+}  // namespace
+}  // namespace voxgi::test

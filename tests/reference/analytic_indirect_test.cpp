@@ -1,0 +1,53 @@
+// The path tracer's indirect light limited by max_depth against the closed forms and the
+// radiosity solution of tests/common/gi_energy, which the voxel GI energy tests use as their
+// references: two independent answers to the same scenes, each checking the other.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "tests/common/gi_energy.hpp"
+#include "tests/gpu/gpu_test_env.hpp"
+
+namespace voxgi::test {
+namespace {
+
+class AnalyticIndirectTest : public GpuTest {};
+
+// One indirect bounce at the receiver: within 5 standard errors of the path-traced mean plus
+// 0.2% (the receiver is 15 mm wide, the reference is its centre's value).
+TEST_F(AnalyticIndirectTest, ReceiverOverALitSquareMatchesThePathTracer) {
+  for (SquareLight light : {SquareLight::Directional, SquareLight::Point}) {
+    for (double height : kReceiverHeights) {
+      const LitSquare square{light, height};
+      const PathTracedMean traced = path_traced_mean_indirect(lit_square_scene(square), 16, 1, 512);
+      const double expected = lit_square_one_bounce_irradiance(square) / std::numbers::pi;
+      std::printf("%s: path traced %.5f (standard error %.5f), analytic %.5f\n",
+                  square.label().c_str(), traced.luminance, traced.standard_error, expected);
+      EXPECT_NEAR(traced.luminance, expected, 5.0 * traced.standard_error + 2e-3 * expected)
+          << square.label();
+    }
+  }
+}
+
+// The box's 32 x 32 view after 1 to 3 indirect bounces: within 5 standard errors plus 1% (the
+// radiosity's piecewise-constant patches; 12 and 24 patches per edge agree to 0.5%).
+TEST_F(AnalyticIndirectTest, ClosedBoxMatchesThePathTracerPerBounce) {
+  const BoxRadiosity radiosity(12, 3);
+  const scene::Scene box = lit_box_scene();
+  for (int bounces = 1; bounces <= 3; ++bounces) {
+    const PathTracedMean traced = path_traced_mean_indirect(box, 32, bounces, 128);
+    const double expected = radiosity.mean_indirect_radiance(box.cameras.front(), 32, bounces);
+    std::printf(
+        "closed box, %d indirect bounces: path traced %.5f (standard error %.5f), "
+        "radiosity %.5f\n",
+        bounces, traced.luminance, traced.standard_error, expected);
+    EXPECT_NEAR(traced.luminance, expected, 5.0 * traced.standard_error + 1e-2 * expected)
+        << bounces << " bounces";
+  }
+}
+
+}  // namespace
+}  // namespace voxgi::test

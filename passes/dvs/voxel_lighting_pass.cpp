@@ -181,7 +181,8 @@ void register_voxel_lighting(graph::Registry& registry) {
        0.0,
        8.0,
        {},
-       "start of shadow rays and offset of shadow-map lookups from the voxel centre, in voxels",
+       "voxel rays: start of shadow rays off the voxel's surface point, in voxels (shadow-map "
+       "lookups start two shadow-map texels off it)",
        true},
       {"shadow_max_steps",
        graph::ParamType::Int,

@@ -46,7 +46,7 @@ layout(push_constant) uniform Push {
   uvec3 size;           // the stacked image: (R, R, R * L)
   uint occlusion;       // OCCLUSION_*
   float shadow_kappa;   // occlusion per fully opaque voxel crossed at one voxel of distance
-  float shadow_bias;    // start offset of shadow rays / lookups, in voxels of the receiver
+  float shadow_bias;    // start offset of voxel shadow rays, in voxels of the receiver
   uint shadow_slots;    // lights with shadow-map data
   uint max_steps;       // cap on the samples of one shadow ray
 } pc;
@@ -74,35 +74,6 @@ float voxel_ray_visibility(vec3 origin, vec3 dir, float max_t, float receiver_si
   return 1.0 - nu;
 }
 
-#if HAS_SHADOW_MAPS
-// Shadow-map occlusion of a voxel centre, 3x3 percentage-closer filtered. The lookup is moved
-// off the voxel centre along its normal: the centre may lie up to half a voxel inside the
-// surface the shadow map saw.
-float shadow_map_visibility(uint light_index, vec3 relative_position, vec3 offset_dir,
-                            float receiver_size) {
-  if (light_index >= pc.shadow_slots) return 1.0;
-  ShadowLight s = shadow_lights[light_index];
-  uint faces = uint(s.info.x + 0.5);
-  if (faces == 0u) return 1.0;
-  vec3 from_origin = (voxel_clipmap.anchor.xyz - s.origin.xyz) + relative_position +
-                     offset_dir * (pc.shadow_bias * receiver_size);
-  uint face = faces == 6u ? shadow_cube_face(from_origin) : 0u;
-  vec4 clip = s.view_proj[face] * vec4(from_origin, 1.0);
-  if (clip.w <= 0.0) return 1.0;
-  vec3 ndc = clip.xyz / clip.w;
-  if (any(greaterThan(abs(ndc.xy), vec2(1.0))) || ndc.z > 1.0) return 1.0;
-  vec2 uv = ndc.xy * 0.5 + 0.5;
-  float layer = float(light_index * 6u + face);
-  vec2 texel = 1.0 / vec2(textureSize(shadow_maps, 0).xy);
-  float sum = 0.0;
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      sum += texture(shadow_maps, vec4(uv + vec2(dx, dy) * texel, layer, ndc.z));
-    }
-  }
-  return sum / 9.0;
-}
-#endif
 
 void main() {
   ivec3 texel = ivec3(gl_GlobalInvocationID);
@@ -127,6 +98,7 @@ void main() {
       vec3 l;
       float attenuation = 1.0;
       float max_t = 3.4e38;
+      float distance_to_light = 0.0;
       if (light.type == SCENE_LIGHT_DIRECTIONAL) {
         l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
       } else {
@@ -148,6 +120,7 @@ void main() {
           attenuation *= s * s;
         }
         max_t = d - 0.5 * size;
+        distance_to_light = d;
       }
       float cosine = dvs_normal_weighted_cosine(normal.xyz, l);
       if (attenuation <= 0.0 || cosine <= 0.0) continue;
@@ -160,8 +133,13 @@ void main() {
         visibility = voxel_ray_visibility(origin, l, max_t, size);
       }
 #if HAS_SHADOW_MAPS
-      if (pc.occlusion == OCCLUSION_SHADOW_MAP) {
-        visibility = shadow_map_visibility(i, p, offset_dir, size);
+      if (pc.occlusion == OCCLUSION_SHADOW_MAP && i < pc.shadow_slots) {
+        // From the surface point, off it by two shadow-map texels (lib/shadow_data.glsl); the
+        // voxel-ray start offset would look past occluders close in front of the surface.
+        visibility =
+            shadow_surface_visibility(shadow_maps, shadow_lights[i], float(i * 6u),
+                                      p + voxel_clipmap.anchor.xyz, offset_dir, 0.0,
+                                      distance_to_light);
       }
 #endif
       irradiance += light.radiance * (attenuation * cosine * visibility);

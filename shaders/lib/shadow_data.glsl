@@ -28,4 +28,25 @@ uint shadow_cube_face(vec3 d) {
   if (a.y >= a.z) return d.y >= 0.0 ? 2u : 3u;
   return d.z >= 0.0 ? 4u : 5u;
 }
+
+// 1 where the shadow map of light `s` (layers layer_base + face of `maps`) sees the surface
+// point p (world space), by one hardware 2x2 PCF compare lookup. The lookup moves off the
+// surface along `facing` by `offset` metres, or by two shadow-map texels or the float32 guard
+// where those are larger. p must lie on the surface (a voxel's average surface plane, not its
+// centre): then a small offset suffices, and a larger one would look past occluders close in
+// front of the surface (a lamp's shade just under a ceiling) and let light through them.
+float shadow_surface_visibility(sampler2DArrayShadow maps, ShadowLight s, float layer_base,
+                                vec3 p, vec3 facing, float offset, float distance_to_light) {
+  uint faces = uint(s.info.x + 0.5);
+  if (faces == 0u) return 1.0;
+  offset = max(offset, max(2.0 * shadow_texel_world(s, distance_to_light), shadow_min_offset(p)));
+  vec3 relative = p + facing * offset - s.origin.xyz;
+  uint face = faces == 6u ? shadow_cube_face(relative) : 0u;
+  vec4 clip = s.view_proj[face] * vec4(relative, 1.0);
+  if (clip.w <= 0.0) return 1.0;
+  vec3 ndc = clip.xyz / clip.w;
+  if (any(greaterThan(abs(ndc.xy), vec2(1.0))) || ndc.z > 1.0) return 1.0;
+  vec2 uv = ndc.xy * 0.5 + 0.5;
+  return texture(maps, vec4(uv, layer_base + float(face), ndc.z));
+}
 #endif

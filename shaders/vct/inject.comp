@@ -47,23 +47,11 @@ layout(push_constant) uniform Push {
 } pc;
 
 #if HAS_SHADOWS
-// 1 when the shadow map of light `index` sees the surface point p (2x2 hardware PCF of one
-// compare lookup). The lookup moves off the surface along `facing` by `offset` metres, or by two
-// shadow-map texels or the float32 guard where those are larger.
+// Visibility of the surface point p (world space) from light `index`: lib/shadow_data.glsl.
 float shadow_visibility(uint index, vec3 p, vec3 facing, float offset, float distance_to_light) {
   if (pc.shadows_enabled == 0u || index >= pc.shadow_slots) return 1.0;
-  ShadowLight s = shadow_lights[index];
-  uint faces = uint(s.info.x + 0.5);
-  if (faces == 0u) return 1.0;
-  offset = max(offset, max(2.0 * shadow_texel_world(s, distance_to_light), shadow_min_offset(p)));
-  vec3 relative = p + facing * offset - s.origin.xyz;
-  uint face = faces == 6u ? shadow_cube_face(relative) : 0u;
-  vec4 clip = s.view_proj[face] * vec4(relative, 1.0);
-  if (clip.w <= 0.0) return 1.0;
-  vec3 ndc = clip.xyz / clip.w;
-  if (any(greaterThan(abs(ndc.xy), vec2(1.0))) || ndc.z > 1.0) return 1.0;
-  vec2 uv = ndc.xy * 0.5 + 0.5;
-  return texture(shadow_maps, vec4(uv, float(index * 6u + face), ndc.z));
+  return shadow_surface_visibility(shadow_maps, shadow_lights[index], float(index * 6u), p,
+                                   facing, offset, distance_to_light);
 }
 #endif
 

@@ -164,7 +164,7 @@ void register_voxel_bounce(graph::Registry& registry) {
        graph::ParamType::Int,
        6.0,
        1.0,
-       16.0,
+       32.0,
        {},
        "cones over each voxel's hemisphere (equal cosine-weighted cells; weights sum to pi)",
        true},

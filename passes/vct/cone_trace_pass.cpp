@@ -288,7 +288,7 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
                       graph::ParamType::Int,
                       6.0,
                       1.0,
-                      16.0,
+                      32.0,
                       {},
                       "diffuse cones over the hemisphere (equal cosine-weighted cells; weights "
                       "sum to pi)",

@@ -127,12 +127,42 @@ float vct_max_lod() {
   return float(voxel_level_count() - 1) + log2(float(voxel_resolution()));
 }
 
+// The coarsest mip of `level` whose trilinear footprint at p (2x2x2 texels) lies inside the
+// level's window. Mip texels are aligned to the world grid, not to the toroidal window, so a
+// texel that straddles the window's edge holds voxels from both of its opposite faces: a
+// sample reaching it would see the far side of the volume (light through the open front of
+// a box, from its back wall). Near the edges cones therefore sample finer mips.
+int vct_window_mip_limit(vec3 p, int level) {
+  int r = voxel_resolution();
+  ivec3 origin = voxel_clipmap.levels[level].origin_voxel.xyz;
+  vec3 window = voxel_window_coord(p, level);
+  int mip = findMSB(r);
+  for (; mip > 0; --mip) {
+    float size = float(1 << mip);
+    vec3 remainder = vec3(origin - ((origin >> mip) << mip));
+    // First texel of the footprint, in window voxels; the footprint is two texels wide.
+    vec3 low = floor((window + remainder) / size - 0.5) * size - remainder;
+    if (all(greaterThanEqual(low, vec3(0.0))) && all(lessThanEqual(low + 2.0 * size, vec3(r)))) {
+      break;
+    }
+  }
+  return mip;
+}
+
+// The coarsest level of detail whose footprint at p stays inside the clipmap's windows.
+float vct_window_lod_limit(vec3 p) {
+  int coarsest = voxel_level_count() - 1;
+  return float(coarsest + vct_window_mip_limit(p, coarsest));
+}
+
 // Filtered value (stored form, see above) at p for a cone travelling along dir, at a
 // fractional level of detail (quadrilinear: trilinear in space, linear between lods). Levels
-// finer than the finest one containing p are replaced by it. vec4(0) outside the volume.
+// finer than the finest one containing p are replaced by it; mips of the coarsest level are
+// limited to those whose footprint stays inside its window. vec4(0) outside the volume.
 vec4 vct_sample(vec3 p, vec3 dir, float lod) {
   int finest = voxel_finest_level(p, 1.0);
   if (finest < 0) return vec4(0.0);
+  lod = min(lod, vct_window_lod_limit(p));
   lod = clamp(lod, float(finest), vct_max_lod());
   int k = int(floor(lod));
   float f = lod - float(k);
@@ -212,6 +242,7 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     float lod = log2(diameter / base_size);
     float height = cone.receiver_height + t * rise;
     if (has_receiver) lod = min(lod, log2(max(height, 1e-6 * base_size) / (3.0 * base_size)));
+    lod = min(lod, vct_window_lod_limit(p));
     lod = clamp(lod, float(finest), vct_max_lod());
     float voxel = base_size * exp2(lod);  // edge of the voxels actually sampled
     // Each sample stands for the segment [t, t + step]; the last one ends at max_distance.
@@ -249,35 +280,31 @@ void vct_tangent_frame(vec3 n, out vec3 t, out vec3 b) {
   b = vec3(c, sign_z + n.y * n.y * a, -n.y);
 }
 
-// The i-th of `count` diffuse cones (1..16) in tangent space (z = normal). The hemisphere is
-// cut into `count` cells of equal cosine-weighted solid angle: for count <= 3, `count` azimuthal
-// sectors; otherwise a polar cap with sin^2(theta_c) = 1/count plus count-1 sectors of the ring
-// theta_c..90 degrees. Each cone points at its cell's cosine-weighted centroid, has the cell's
-// solid angle and weight pi/count (the cell's integral of cos theta), so the weights sum to
-// exactly pi: a uniform environment of radiance L gives irradiance pi*L for every count.
+#define VCT_MAX_DIFFUSE_CONES 32
+
+// The i-th of `count` diffuse cones (1..VCT_MAX_DIFFUSE_CONES) in tangent space (z = normal).
+// Cosine-weighted solid angle is area on the unit disk the hemisphere projects to (disk radius
+// sin theta, dA = cos theta d omega), so `count` points spread evenly over that disk are a
+// quadrature of the irradiance integral with equal weights pi/count; they sum to exactly pi,
+// and a uniform environment of radiance L gives irradiance pi*L for every count. The points
+// are a golden-angle (Vogel) spiral: point i at radius^2 (i + 1/2)/count, so every count
+// covers both the polar angle and the azimuth evenly, down to near the horizon. (Cones at the
+// cosine-weighted centroids of one ring of sectors all sat at one polar angle, about 48
+// degrees, so adding cones never refined theta, and cones that lie low over their receiver
+// are narrowed to near-rays; see vct_trace_cone.) Each cone's aperture is the solid angle
+// of its share of the disk, pi/count / cos theta.
 void vct_diffuse_cone(int index, int count, out vec3 direction, out float weight,
                       out float tan_half_angle) {
-  count = clamp(count, 1, 16);
+  count = clamp(count, 1, VCT_MAX_DIFFUSE_CONES);
+  index = clamp(index, 0, count - 1);
   weight = VCT_PI / float(count);
-  bool has_cap = count >= 4;
-  float sin2_cap = has_cap ? 1.0 / float(count) : 0.0;
-  float cos_cap = sqrt(1.0 - sin2_cap);
-  float solid_angle;
-  if (has_cap && index == 0) {
-    direction = vec3(0.0, 0.0, 1.0);
-    solid_angle = 2.0 * VCT_PI * (1.0 - cos_cap);
-  } else {
-    int sectors = has_cap ? count - 1 : count;
-    int sector = has_cap ? index - 1 : index;
-    float width = 2.0 * VCT_PI / float(sectors);
-    float phi = (float(sector) + 0.5) * width;
-    float sin_cap = sqrt(sin2_cap);
-    // Integrals over the sector of cos(theta) * omega: radial part and normal part.
-    float radial = (1.0 - sin_cap * sin_cap * sin_cap) / 3.0 * 2.0 * sin(0.5 * width);
-    float normal = cos_cap * cos_cap * cos_cap / 3.0 * width;
-    direction = normalize(vec3(radial * cos(phi), radial * sin(phi), normal));
-    solid_angle = width * cos_cap;
-  }
+  const float golden_angle = 2.39996323;  // pi (3 - sqrt 5)
+  float sin2 = count == 1 ? 0.0 : (float(index) + 0.5) / float(count);
+  float sin_theta = sqrt(sin2);
+  float cos_theta = sqrt(1.0 - sin2);
+  float phi = float(index) * golden_angle;
+  direction = vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
+  float solid_angle = min(weight / cos_theta, 2.0 * VCT_PI);
   // A cone of half angle h has solid angle 2 pi (1 - cos h).
   float cos_half = clamp(1.0 - solid_angle / (2.0 * VCT_PI), 0.0, 1.0);
   float sin_half = sqrt(max(1.0 - cos_half * cos_half, 0.0));
@@ -295,7 +322,7 @@ vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float normal_offset, VctT
   vec3 origin = p + n * normal_offset;
   vec3 irradiance = vec3(0.0);
   float occlusion = 0.0;
-  count = clamp(count, 1, 16);
+  count = clamp(count, 1, VCT_MAX_DIFFUSE_CONES);
   for (int i = 0; i < count; ++i) {
     vec3 d;
     float weight, tan_half;

@@ -55,7 +55,7 @@ TEST_P(VctEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
         std::string(bound_scene.name) + ", " + vct_gi_setup(resolution, cones).label;
     const RenderedImage indirect = harness.output("indirect");
     expect_finite_non_negative(indirect, label);
-    expect_within_energy_bound(label, mean_luminance(indirect), reference);
+    expect_within_energy_bound(label, mean_luminance(indirect), reference, bound_scene.tolerance);
   }
 }
 

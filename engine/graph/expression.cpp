@@ -24,6 +24,12 @@ namespace {
 
 using Node = Expression::Node;
 
+// Bounds on what one expression may hold. Parsing, evaluation and destruction recurse over the
+// tree, so a file with thousands of nested parentheses or summed terms must be refused, not
+// overflow the stack. Graph expressions are a few terms long.
+constexpr int kMaxNesting = 256;  // parentheses, unary operators and calls inside each other
+constexpr int kMaxNodes = 4096;   // numbers, names, operators and calls
+
 // Precedence climbing, lowest first: || && (== !=) (< <= > >=) (+ -) (* /) unary.
 class ExprParser {
  public:
@@ -48,6 +54,34 @@ class ExprParser {
     return table;
   }
 
+  // A counted node; refuses expressions beyond kMaxNodes.
+  std::unique_ptr<Node> make_node() {
+    if (++nodes_ > kMaxNodes) {
+      throw ExpressionError(column(), "expression too long: more than " +
+                                          std::to_string(kMaxNodes) + " values and operators");
+    }
+    auto node = std::make_unique<Node>();
+    node->column = column();
+    return node;
+  }
+
+  // Counts one level of nesting while alive; refuses more than kMaxNesting.
+  class NestingGuard {
+   public:
+    explicit NestingGuard(ExprParser& parser) : parser_(parser) {
+      if (++parser_.nesting_ > kMaxNesting) {
+        throw ExpressionError(parser_.column(), "expression nested too deeply: more than " +
+                                                    std::to_string(kMaxNesting) + " levels");
+      }
+    }
+    ~NestingGuard() { --parser_.nesting_; }
+    NestingGuard(const NestingGuard&) = delete;
+    NestingGuard& operator=(const NestingGuard&) = delete;
+
+   private:
+    ExprParser& parser_;
+  };
+
   bool at_end() const { return pos_ >= text_.size(); }
   int column() const { return static_cast<int>(pos_) + 1; }
   void skip_space() {
@@ -67,10 +101,9 @@ class ExprParser {
         }
       }
       if (!matched) return lhs;
-      auto node = std::make_unique<Node>();
+      auto node = make_node();
       node->op = Node::Op::Binary;
       node->binary_op = *matched;
-      node->column = column();
       pos_ += matched->size();
       node->lhs = std::move(lhs);
       node->rhs = parse_binary(level + 1);
@@ -82,8 +115,8 @@ class ExprParser {
     skip_space();
     if (at_end()) throw ExpressionError(column(), "expected a value, found the end");
     const char c = text_[pos_];
-    auto node = std::make_unique<Node>();
-    node->column = column();
+    const NestingGuard nesting(*this);
+    auto node = make_node();
     if (c == '-' || c == '!') {
       // "!=" never starts a value, so a '!' here is always logical not.
       ++pos_;
@@ -105,7 +138,8 @@ class ExprParser {
     }
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
       char* end = nullptr;
-      const std::string copy(text_.substr(pos_));
+      // A number is short; copy a bounded prefix for strtod rather than the rest of the text.
+      const std::string copy(text_.substr(pos_, 64));
       node->number = std::strtod(copy.c_str(), &end);
       const size_t used = static_cast<size_t>(end - copy.c_str());
       if (used == 0) throw ExpressionError(column(), "malformed number");
@@ -173,6 +207,8 @@ class ExprParser {
 
   std::string_view text_;
   size_t pos_ = 0;
+  int nodes_ = 0;
+  int nesting_ = 0;
 };
 
 std::vector<std::string> keys_of(const std::map<std::string, double>& map) {

@@ -147,6 +147,21 @@ TEST(CompilerValidation, ParameterFromGraphParameterExpression) {
   EXPECT_DOUBLE_EQ(g.passes[0].params.at("value").number, 0.5);  // default
 }
 
+TEST(CompilerValidation, HugeExpressionIsRefusedWithAShortQuote) {
+  std::string sum = "1";
+  for (int i = 0; i < 20000; ++i) sum += "+1";
+  const std::string e = single_error(
+      graph(R"(    { "name": "clear", "type": "test.clear", "params": { "count": ")" + sum +
+            R"(" }, "out": { "color": "hdr" } },
+)" + kShade));
+  EXPECT_NE(e.find("graphs/test.json:"), std::string::npos) << e;
+  EXPECT_NE(e.find("field 'params.count'"), std::string::npos) << e;
+  EXPECT_NE(e.find("expression too long: more than 4096 values and operators"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("\"...1+1"), std::string::npos) << e;
+  EXPECT_LT(e.size(), 400u) << e;
+}
+
 TEST(CompilerValidation, UnknownResource) {
   EXPECT_EQ(
       single_error(graph(

@@ -115,5 +115,31 @@ TEST(Expression, ErrorsGiveColumns) {
   EXPECT_EQ(e.column(), 3);
 }
 
+// Expressions recurse when parsed, evaluated and destroyed: nesting and length are bounded
+// with a located error instead of overflowing the stack.
+TEST(Expression, HugeExpressionsAreRefusedNotCrashed) {
+  const std::string parentheses = std::string(5000, '(') + "1" + std::string(5000, ')');
+  ExpressionError e = error_of(parentheses);
+  EXPECT_EQ(e.column(), 257);
+  EXPECT_STREQ(e.what(), "expression nested too deeply: more than 256 levels");
+
+  EXPECT_STREQ(error_of(std::string(100000, '-') + "1").what(),
+               "expression nested too deeply: more than 256 levels");
+  EXPECT_STREQ(error_of(std::string(100000, '!') + "1").what(),
+               "expression nested too deeply: more than 256 levels");
+
+  std::string sum = "1";
+  for (int i = 0; i < 50000; ++i) sum += "+1";
+  e = error_of(sum);
+  EXPECT_STREQ(e.what(), "expression too long: more than 4096 values and operators");
+  EXPECT_GT(e.column(), 1);
+
+  // Within the bounds, deep and long expressions still evaluate.
+  EXPECT_EQ(eval(std::string(200, '(') + "2" + std::string(200, ')')), 2.0);
+  std::string long_sum = "0";
+  for (int i = 0; i < 1000; ++i) long_sum += " + 1";
+  EXPECT_EQ(eval(long_sum), 1000.0);
+}
+
 }  // namespace
 }  // namespace voxgi::graph

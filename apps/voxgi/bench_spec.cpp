@@ -11,6 +11,7 @@
 
 #include "apps/voxgi/bench_hash.hpp"
 #include "apps/voxgi/cli_args.hpp"
+#include "engine/graph/input_file.hpp"
 #include "engine/graph/json.hpp"
 #include "engine/scene/builtin_scenes.hpp"
 
@@ -363,14 +364,7 @@ BenchSpec parse_bench(const std::string& text, const std::filesystem::path& path
 
 BenchSpec load_bench_file(const std::filesystem::path& path,
                           const std::filesystem::path& repo_dir) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    graph::Diagnostic diagnostic;
-    diagnostic.loc.file = path.string();
-    diagnostic.message = "cannot read the bench file (missing or unreadable)";
-    throw graph::GraphError(diagnostic);
-  }
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string text = graph::read_input_file(path, "bench file");
   return parse_bench(text, path, repo_dir);
 }
 

@@ -6,6 +6,8 @@
 #include <set>
 #include <sstream>
 
+#include "engine/graph/input_file.hpp"
+
 namespace voxgi::graph {
 
 const ResourceDesc* GraphDesc::find_resource(std::string_view resource_name) const {
@@ -293,16 +295,7 @@ GraphDesc parse_graph(std::string_view text, std::string file_name) {
 }
 
 GraphDesc load_graph_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw GraphError(Diagnostic{SourceLoc{path.string(), 0, 0},
-                                {},
-                                {},
-                                "cannot open the graph file (expected a readable JSON file)"});
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_graph(text.str(), path.string());
+  return parse_graph(read_input_file(path, "graph file"), path.string());
 }
 
 }  // namespace voxgi::graph

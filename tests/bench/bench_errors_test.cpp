@@ -28,7 +28,7 @@ TEST_F(VoxgiBenchErrors, WrongCommandLines) {
   EXPECT_TRUE(exited_with(voxgi({"bench"}), 2));
   const ProcessResult missing = voxgi({"bench", "missing.json"});
   EXPECT_TRUE(exited_with(missing, 1));
-  EXPECT_TRUE(stderr_has(missing, {"missing.json: error: cannot read the bench file"}));
+  EXPECT_TRUE(stderr_has(missing, {"missing.json: error: cannot open the bench file"}));
   const ProcessResult shard = bench_text(std::string(R"({ "scenes": ["cornell"],
     "graphs": ["graphs/default.json"], )") + kReference +
                                              "}",

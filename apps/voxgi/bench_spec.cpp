@@ -70,8 +70,36 @@ class BenchParser {
     }
 
     if (const Value* reference = required(root, "reference")) parse_reference(*reference, spec);
+    if (graphs) check_configuration_count(*graphs, spec);
     diagnostics_.throw_if_any();
     return spec;
+  }
+
+  // Refuses, before anything runs, a bench whose sweeps multiply into more configurations
+  // than any run could finish (a stray value list, a sweep pasted twice).
+  void check_configuration_count(const Value& graphs, const BenchSpec& spec) {
+    const auto saturating_product = [](uint64_t a, uint64_t b) {
+      return b != 0 && a > UINT64_MAX / b ? UINT64_MAX : a * b;
+    };
+    uint64_t views = 0;
+    for (const BenchScene& scene : spec.scenes) views += scene.cameras.size();
+    views = saturating_product(views, spec.resolutions.size());
+    uint64_t total = 0;
+    for (const BenchGraph& entry : spec.graphs) {
+      uint64_t per_view = 1;
+      for (const BenchSweep& sweep : entry.sweeps) {
+        per_view = saturating_product(per_view, sweep.values.size());
+      }
+      const uint64_t count = saturating_product(per_view, views);
+      total = total > UINT64_MAX - count ? UINT64_MAX : total + count;
+    }
+    if (total > kMaxBenchConfigurations) {
+      error(graphs.loc(), "graphs",
+            "the scenes, cameras, resolutions and sweeps make " +
+                (total == UINT64_MAX ? std::string("more than 2^64") : std::to_string(total)) +
+                " configurations, more than " + std::to_string(kMaxBenchConfigurations) +
+                " in one bench; shorten the sweeps or split the bench file");
+    }
   }
 
  private:
@@ -224,6 +252,22 @@ class BenchParser {
       scene.source = scene.label;
     }
     if (scene.cameras.empty()) scene.cameras = {"default"};
+    for (const BenchScene& earlier : spec.scenes) {
+      if (earlier.source == scene.source) {
+        error(value.loc(), field,
+              "scene '" + scene.label + "' is listed twice (first at line " +
+                  std::to_string(earlier.loc.line) +
+                  "); list it once, with every camera in its \"cameras\"");
+        return;
+      }
+    }
+    std::set<std::string> cameras;
+    for (const std::string& camera : scene.cameras) {
+      if (!cameras.insert(camera).second) {
+        error(value.loc(), field + ".cameras", "camera '" + camera + "' is listed twice");
+        return;
+      }
+    }
     spec.scenes.push_back(std::move(scene));
   }
 

@@ -79,6 +79,9 @@ BenchSpec load_bench_file(const std::filesystem::path& path, const std::filesyst
 BenchSpec parse_bench(const std::string& text, const std::filesystem::path& path,
                       const std::filesystem::path& repo_dir);
 
+// The most configurations one bench file may expand to; larger ones are refused when parsed.
+inline constexpr uint64_t kMaxBenchConfigurations = 10000;
+
 // Scenes × cameras × resolutions × graphs × the product of each graph's sweeps, in that order.
 std::vector<BenchConfiguration> expand_configurations(const BenchSpec& spec);
 

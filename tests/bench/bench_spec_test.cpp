@@ -158,6 +158,24 @@ TEST(BenchSpec, BadFilesNameFileLineColumnAndField) {
       {R"({ "scenes": ["cornell"], "graphs": ["graphs/nope.json"], )" + ref + "}",
        "\"graphs/nope.json\"",
        {"field 'graphs[0]'", "file 'graphs/nope.json' not found"}},
+      {R"({ "scenes": ["cornell", "spheres", "cornell"], "graphs": ["graphs/default.json"], )" +
+           ref + "}",
+       "\"cornell\"], \"graphs\"",
+       {"field 'scenes[2]'", "scene 'cornell' is listed twice (first at line 1)"}},
+      {R"({ "scenes": [{ "scene": "cornell", "cameras": ["default", "default"] }],
+           "graphs": ["graphs/default.json"], )" +
+           ref + "}",
+       "{ \"scene\"",
+       {"field 'scenes[0].cameras'", "camera 'default' is listed twice"}},
+      {R"({ "scenes": ["cornell"], "graphs": [{ "graph": "graphs/vct.json", "sweep": {
+             "voxel.resolution": [8, 16, 32, 64, 128, 256, 512, 8, 16, 32],
+             "cone_trace.diffuse_cones": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10],
+             "cone_trace.step_factor": [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1],
+             "cone_trace.normal_offset": [0, 1, 2, 3, 4, 5, 6, 7, 8, 0.5],
+             "cone_trace.start_offset": [0, 1] } }], )" +
+           ref + "}",
+       "[{ \"graph\"",
+       {"field 'graphs'", "make 20000 configurations, more than 10000 in one bench"}},
       {R"({ "scenes": ["cornell"], "graphs": [{ "graph": "graphs/default.json",
            "sweep": { "ambient.radiance": 0.5 } }], )" +
            ref + "}",

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
+#include <system_error>
 
 #include "engine/scene/geometry.hpp"
 
@@ -54,6 +56,36 @@ bool decode_image(tinygltf::Image* image, const int index, std::string*, std::st
   const auto* begin = static_cast<const unsigned char*>(data);
   image->image.assign(begin, begin + byte_count);
   stbi_image_free(data);
+  return true;
+}
+
+// The files a glTF's buffer and image URIs name. Only regular files of at most 4 GiB are read:
+// a URI that names a folder or a device would otherwise be "read" as a file of absurd size.
+constexpr uintmax_t kMaxReferencedFileBytes = uintmax_t{4} << 30;
+
+bool read_referenced_file(std::vector<unsigned char>* out, std::string* err,
+                          const std::string& path, void*) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::is_regular_file(status)) {
+    if (err) {
+      *err += "'" + path + "' is " +
+              (std::filesystem::is_directory(status) ? "a folder" : "not a regular file") +
+              ", expected a file\n";
+    }
+    return false;
+  }
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxReferencedFileBytes) {
+    if (err) *err += "'" + path + "' is larger than 4 GiB\n";
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  out->resize(static_cast<size_t>(size));
+  if (!in || !in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size))) {
+    if (err) *err += "'" + path + "' could not be read\n";
+    return false;
+  }
   return true;
 }
 
@@ -222,6 +254,8 @@ class Loader {
 
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(decode_image, nullptr);
+    gltf.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_referenced_file,
+                         &tinygltf::WriteWholeFile, nullptr});
     std::string err, warning;
     const std::string name = path_.string();
     const bool ok = binary ? gltf.LoadBinaryFromFile(&model_, &err, &warning, name)
@@ -273,12 +307,14 @@ class Loader {
     if (components == 0 || components > 4 || csize == 0) {
       fail(where, "unsupported componentType " + std::to_string(accessor.componentType));
     }
-    std::vector<glm::vec4> values(accessor.count, glm::vec4(0.0f));
+    std::vector<glm::vec4> values;
     if (accessor.bufferView >= 0) {
       const unsigned char* base = nullptr;
       size_t stride = 0;
+      // Checked against the buffer before anything the size of `count` is allocated.
       view_range(accessor.bufferView, accessor.byteOffset, accessor.count, components * csize,
                  where, base, stride);
+      values.assign(accessor.count, glm::vec4(0.0f));
       for (size_t i = 0; i < accessor.count; ++i) {
         const unsigned char* element = base + i * stride;
         for (size_t c = 0; c < components; ++c) {
@@ -286,9 +322,22 @@ class Loader {
               read_component(element + c * csize, accessor.componentType, accessor.normalized);
         }
       }
+    } else {
+      check_zero_accessor_count(accessor.count, where);
+      values.assign(accessor.count, glm::vec4(0.0f));
     }
     if (accessor.sparse.isSparse) apply_sparse(accessor, components, csize, where, values);
     return values;
+  }
+
+  // An accessor without a bufferView reads as zeros (glTF 2.0, 3.6.2.1), so nothing in the file
+  // bounds its count: refuse counts no mesh of a real-time scene has before allocating them.
+  void check_zero_accessor_count(size_t count, const std::string& where) {
+    constexpr size_t kMaxZeroElements = size_t{1} << 24;
+    if (count > kMaxZeroElements) {
+      fail(where, "count " + std::to_string(count) + " without a bufferView: more than the " +
+                      std::to_string(kMaxZeroElements) + " elements voxgi reads as zeros");
+    }
   }
 
   // Start pointer and stride of `count` elements of `element_size` bytes at `offset` in a
@@ -365,12 +414,15 @@ class Loader {
                       std::to_string(ct));
     }
     if (accessor.sparse.isSparse) fail(where, "sparse index accessors are not supported");
-    std::vector<uint32_t> indices(accessor.count, 0);
-    if (accessor.bufferView < 0) return indices;
+    if (accessor.bufferView < 0) {
+      check_zero_accessor_count(accessor.count, where);
+      return std::vector<uint32_t>(accessor.count, 0);
+    }
     const unsigned char* base = nullptr;
     size_t stride = 0;
     view_range(accessor.bufferView, accessor.byteOffset, accessor.count, component_size(ct), where,
                base, stride);
+    std::vector<uint32_t> indices(accessor.count, 0);
     for (size_t i = 0; i < accessor.count; ++i) {
       indices[i] = read_index(base + i * stride, ct);
       if (indices[i] >= vertex_count) {

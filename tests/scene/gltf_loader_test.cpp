@@ -327,6 +327,39 @@ TEST_F(GltfLoader, OutOfRangeIndexAndBufferView) {
   EXPECT_TRUE(contains(message, "meshes[0].primitives[0].material")) << message;
 }
 
+// Counts and URIs that would make the loader allocate or read absurd amounts are refused with
+// the field named, before anything of their size is allocated.
+TEST_F(GltfLoader, HugeCountsAndFolderUrisAreRefused) {
+  GltfWriter w;
+  json p = w.triangle();
+  w.add_mesh_node(p);
+  w.doc["accessors"][0]["count"] = 2147483647;
+  w.write_gltf(dir_ / "count.gltf");
+  std::string message = load_error(dir_ / "count.gltf");
+  EXPECT_TRUE(contains(message, "attributes.POSITION (accessors[0]): 2147483647 elements"))
+      << message;
+
+  GltfWriter z;
+  json q = z.triangle();
+  z.add_mesh_node(q);
+  z.doc["accessors"][0].erase("bufferView");  // reads as zeros: nothing bounds the count
+  z.doc["accessors"][0]["count"] = 2147483647;
+  z.write_gltf(dir_ / "zeros.gltf");
+  message = load_error(dir_ / "zeros.gltf");
+  EXPECT_TRUE(contains(message, "count 2147483647 without a bufferView")) << message;
+
+  GltfWriter f;
+  json r = f.triangle();
+  f.add_mesh_node(r);
+  f.write_gltf(dir_ / "folder.gltf");
+  std::filesystem::create_directories(dir_ / "a_folder");
+  f.doc["buffers"][0]["uri"] = "a_folder";
+  std::ofstream(dir_ / "folder.gltf") << f.doc.dump(2);
+  message = load_error(dir_ / "folder.gltf");
+  EXPECT_TRUE(contains(message, (dir_ / "folder.gltf").string())) << message;
+  EXPECT_TRUE(contains(message, "is a folder, expected a file")) << message;
+}
+
 TEST_F(GltfLoader, NodeCycleIsAnError) {
   GltfWriter w;
   w.add_node({{"children", {1}}});

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <map>
+#include <set>
+
+#include "engine/graph/diagnostics.hpp"
 
 namespace voxgi::graph {
 
@@ -15,8 +18,23 @@ constexpr const char* kPrefix = "libvoxgi_passes_";
 constexpr const char* kSuffix = ".so";
 }  // namespace
 
-PluginLoader::PluginLoader(std::vector<fs::path> search_dirs)
-    : search_dirs_(std::move(search_dirs)) {}
+PluginLoader::PluginLoader(std::vector<fs::path> search_dirs) {
+  // The same directory reached twice (the executable's lib folder is often also the build
+  // tree's plugin folder) is searched and listed once.
+  for (fs::path& dir : search_dirs) {
+    std::error_code ec;
+    fs::path key = fs::weakly_canonical(dir, ec);
+    if (ec) key = dir.lexically_normal();
+    bool seen = false;
+    for (const fs::path& kept : search_dirs_) {
+      std::error_code kept_ec;
+      fs::path kept_key = fs::weakly_canonical(kept, kept_ec);
+      if (kept_ec) kept_key = kept.lexically_normal();
+      seen = seen || kept_key == key;
+    }
+    if (!seen) search_dirs_.push_back(std::move(dir));
+  }
+}
 
 std::vector<fs::path> PluginLoader::default_search_dirs() {
   std::vector<fs::path> dirs;
@@ -103,10 +121,35 @@ void PluginLoader::load_library(const std::string& family, const fs::path& file,
 }
 
 void PluginLoader::load_for_graph(const GraphDesc& desc, Registry& registry) {
+  // A family with no library is a mistake in the graph file: name the file, line, column and
+  // pass, the families that do exist, and the closest of them.
+  const std::map<std::string, fs::path> available = available_families();
+  DiagnosticList diagnostics;
+  std::set<std::string> reported;
+  for (const PassDesc& pass : desc.passes) {
+    const size_t dot = pass.type.find('.');
+    if (dot == std::string::npos || dot == 0) continue;  // the compiler reports those
+    const std::string family = pass.type.substr(0, dot);
+    if (loaded_.count(family) || available.count(family) || !reported.insert(family).second) {
+      continue;
+    }
+    std::vector<std::string> names;
+    std::string list;
+    for (const auto& [name, file] : available) {
+      names.push_back(name);
+      list += (list.empty() ? "" : ", ") + name;
+    }
+    diagnostics.error(pass.type_loc, pass.name, "type",
+                      "unknown pass family '" + family + "' in pass type '" + pass.type + "': no " +
+                          library_file_name(family) + " in " + searched_dirs_text() +
+                          " (families there: " + (list.empty() ? std::string("none") : list) + ")",
+                      did_you_mean(family, names));
+  }
+  diagnostics.throw_if_any();
   for (const std::string& family : desc.families()) load_family(family, registry);
 }
 
-void PluginLoader::load_all(Registry& registry) {
+std::map<std::string, fs::path> PluginLoader::available_families() const {
   std::map<std::string, fs::path> found;
   for (const fs::path& dir : search_dirs_) {
     std::error_code ec;
@@ -124,7 +167,11 @@ void PluginLoader::load_all(Registry& registry) {
       found.emplace(family, entry.path());  // earlier directories win
     }
   }
-  for (const auto& [family, file] : found) {
+  return found;
+}
+
+void PluginLoader::load_all(Registry& registry) {
+  for (const auto& [family, file] : available_families()) {
     if (!loaded_.count(family)) load_library(family, file, registry);
   }
 }

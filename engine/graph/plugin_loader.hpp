@@ -4,6 +4,7 @@
 // vtables live in them.
 
 #include <filesystem>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -32,8 +33,12 @@ class PluginLoader {
 
   // Loads one family once; later calls for the same family do nothing. Throws PluginError.
   void load_family(const std::string& family, Registry& registry);
-  // Every family named by a pass type "family.pass" in the graph.
+  // Every family named by a pass type "family.pass" in the graph. A family with no library in
+  // the search directories throws GraphError located at the pass's "type"; a library that
+  // cannot be loaded throws PluginError.
   void load_for_graph(const GraphDesc& desc, Registry& registry);
+  // The families whose libraries the search directories hold (first directory wins).
+  std::map<std::string, std::filesystem::path> available_families() const;
   // Every libvoxgi_passes_*.so in the search directories (first one found per family wins).
   void load_all(Registry& registry);
 

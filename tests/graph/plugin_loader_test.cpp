@@ -60,6 +60,28 @@ TEST(PluginLoader, MissingFamilyNamesLibraryAndEveryDirectory) {
   EXPECT_TRUE(contains(e, (kPlugins / "nowhere").string())) << e;
 }
 
+TEST(PluginLoader, UnknownFamilyInAGraphIsLocatedWithTheFamiliesThatExist) {
+  const GraphDesc desc = parse_graph(R"({
+    "resources": { "a": { "type": "image2d", "format": "rgba8", "size": 4 } },
+    "passes": [ { "name": "p", "type": "testfan.copy", "in": { "src": "a" }, "out": { "dst": "a" } } ],
+    "outputs": { "display": "a" } })",
+                                     "g.json");
+  PluginLoader loader({kPlugins / "testfam", kPlugins / "testfam", kPlugins / "nowhere"});
+  Registry registry;
+  try {
+    loader.load_for_graph(desc, registry);
+    ADD_FAILURE() << "an unknown family loaded";
+  } catch (const GraphError& e) {
+    const std::string m = e.what();
+    EXPECT_TRUE(contains(m, "g.json:3:40: error: pass 'p' field 'type'")) << m;
+    EXPECT_TRUE(contains(m, "unknown pass family 'testfan' in pass type 'testfan.copy'")) << m;
+    EXPECT_TRUE(contains(m, "families there: testfam")) << m;
+    EXPECT_TRUE(contains(m, "did you mean 'testfam'")) << m;
+  }
+  // A directory given twice is searched and listed once.
+  EXPECT_EQ(loader.search_dirs().size(), 2u);
+}
+
 TEST(PluginLoader, AbiMismatchNamesBothVersions) {
   PluginLoader loader({kPlugins / "badabi"});
   const std::string e = load_error(loader, "badabi");

@@ -12,6 +12,7 @@
 #include "engine/gpu/error.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/timestamps.hpp"
+#include "engine/graph/memory_budget.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace voxgi::graph {
@@ -136,6 +137,9 @@ void Executor::release() {
 
 void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
                      scene::GpuScene& gpu_scene) {
+  // Before anything is released or allocated: a graph too large for the device is refused
+  // and the current one keeps running.
+  check_memory_budget(graph, device_memory_budget(context_.physical_device()));
   context_.wait_idle();
   // Persistent contents survive a rebuild when their description and usage still fit.
   struct Kept {

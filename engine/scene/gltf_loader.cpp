@@ -258,8 +258,18 @@ class Loader {
                          &tinygltf::WriteWholeFile, nullptr});
     std::string err, warning;
     const std::string name = path_.string();
-    const bool ok = binary ? gltf.LoadBinaryFromFile(&model_, &err, &warning, name)
-                           : gltf.LoadASCIIFromFile(&model_, &err, &warning, name);
+    bool ok = false;
+    try {
+      ok = binary ? gltf.LoadBinaryFromFile(&model_, &err, &warning, name)
+                  : gltf.LoadASCIIFromFile(&model_, &err, &warning, name);
+    } catch (const std::exception& e) {
+      // The parser indexes some of its own arrays unchecked (a node naming a light that the
+      // file's light list does not have); say which file and what it was reading.
+      fail(binary ? "glb" : "gltf",
+           std::string("not a valid glTF 2.0 file: the parser stopped on an inconsistent "
+                       "reference (") +
+               e.what() + ")");
+    }
     std::istringstream warnings(warning);
     for (std::string line; std::getline(warnings, line);) {
       if (!line.empty()) warn(line);

@@ -360,6 +360,26 @@ TEST_F(GltfLoader, HugeCountsAndFolderUrisAreRefused) {
   EXPECT_TRUE(contains(message, "is a folder, expected a file")) << message;
 }
 
+// tinygltf indexes a GLB's buffer data unchecked when the buffer declares byteLength 0 while
+// views use it: it threw std::out_of_range, and the message named no file.
+TEST_F(GltfLoader, GlbBufferOfLengthZeroIsRefusedWithTheFile) {
+  GltfWriter w;
+  w.add_mesh_node(w.triangle());
+  std::vector<uint8_t> glb = w.glb_bytes();
+  std::string bytes(glb.begin(), glb.end());
+  const std::string declared =
+      "\"buffers\":[{\"byteLength\":" + std::to_string(w.bin.size()) + "}]";
+  std::string zero = "\"buffers\":[{\"byteLength\":0}]";
+  zero.resize(declared.size(), ' ');  // same length: the chunk sizes stay right
+  const size_t at = bytes.find(declared);
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at, declared.size(), zero);
+  std::ofstream(dir_ / "zero.glb", std::ios::binary) << bytes;
+  const std::string message = load_error(dir_ / "zero.glb");
+  EXPECT_TRUE(contains(message, (dir_ / "zero.glb").string() + ": glb: not a valid glTF 2.0 file"))
+      << message;
+}
+
 TEST_F(GltfLoader, NodeCycleIsAnError) {
   GltfWriter w;
   w.add_node({{"children", {1}}});

@@ -9,11 +9,13 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <system_error>
 
 #include "engine/scene/geometry.hpp"
+#include "engine/scene/gltf_normalize.hpp"
 
 namespace voxgi::scene {
 
@@ -224,6 +226,30 @@ class Loader {
     }
   }
 
+  // Documents the specification allows and the parser refuses, rewritten (gltf_normalize).
+  void rewrite_what_the_parser_refuses(std::vector<unsigned char>& bytes, bool binary) {
+    std::string text;
+    if (binary) {
+      uint32_t json_length = 0;
+      if (bytes.size() < 20) return;
+      std::memcpy(&json_length, bytes.data() + 12, sizeof json_length);
+      if (size_t{json_length} > bytes.size() - 20) return;  // the parser says what is wrong
+      text.assign(reinterpret_cast<const char*>(bytes.data()) + 20, json_length);
+    } else {
+      text.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    }
+    const std::optional<NormalizedGltf> normalized = normalize_gltf_json(text, binary);
+    if (!normalized || !normalized->changed) return;
+    if (binary) {
+      std::optional<std::vector<unsigned char>> rebuilt = replace_glb_json(bytes, normalized->json);
+      if (!rebuilt) return;
+      bytes = std::move(*rebuilt);
+    } else {
+      bytes.assign(normalized->json.begin(), normalized->json.end());
+    }
+    for (const std::string& w : normalized->warnings) warn(w);
+  }
+
   void parse_file() {
     std::error_code ec;
     if (!std::filesystem::exists(path_, ec)) fail("file", "does not exist");
@@ -257,11 +283,20 @@ class Loader {
     gltf.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_referenced_file,
                          &tinygltf::WriteWholeFile, nullptr});
     std::string err, warning;
-    const std::string name = path_.string();
+    std::vector<unsigned char> bytes;
+    if (!read_referenced_file(&bytes, &err, path_.string(), nullptr)) {
+      fail("file", err.empty() ? std::string("cannot be read") : err);
+    }
+    rewrite_what_the_parser_refuses(bytes, binary);
+    const std::string base_dir = path_.parent_path().string();
+    const auto length = static_cast<unsigned int>(bytes.size());
     bool ok = false;
     try {
-      ok = binary ? gltf.LoadBinaryFromFile(&model_, &err, &warning, name)
-                  : gltf.LoadASCIIFromFile(&model_, &err, &warning, name);
+      ok = binary
+               ? gltf.LoadBinaryFromMemory(&model_, &err, &warning, bytes.data(), length, base_dir)
+               : gltf.LoadASCIIFromString(&model_, &err, &warning,
+                                          reinterpret_cast<const char*>(bytes.data()), length,
+                                          base_dir);
     } catch (const std::exception& e) {
       // The parser indexes some of its own arrays unchecked (a node naming a light that the
       // file's light list does not have); say which file and what it was reading.

@@ -380,6 +380,54 @@ TEST_F(GltfLoader, GlbBufferOfLengthZeroIsRefusedWithTheFile) {
       << message;
 }
 
+// Documents the glTF 2.0 specification allows that the parser refused: each loads, with a
+// warning where the meaning changes.
+TEST_F(GltfLoader, SpecificationAllowedDocumentsTheParserRefusedLoad) {
+  {  // integers written as floats
+    GltfWriter w;
+    w.add_mesh_node(w.triangle());
+    w.doc["accessors"][0]["count"] = 3.0;
+    w.doc["accessors"][0]["componentType"] = 5126.0;
+    w.doc["scene"] = 0.0;
+    w.write_gltf(dir_ / "floats.gltf");
+    EXPECT_EQ(load_error(dir_ / "floats.gltf"), "");
+  }
+  {  // a skin without inverseBindMatrices (identity)
+    GltfWriter w;
+    const int joint = w.add_node({{"name", "joint"}});
+    w.add_mesh_node(w.triangle(), {{"skin", 0}});
+    w.doc["skins"] = {{{"joints", {joint}}}};
+    w.write_gltf(dir_ / "skin.gltf");
+    const Scene scene = load_gltf(dir_ / "skin.gltf");
+    EXPECT_TRUE(any_warning(scene, "skins[0]: no inverseBindMatrices"));
+  }
+  {  // an unused buffer without a uri in a .gltf
+    GltfWriter w;
+    w.add_mesh_node(w.triangle());
+    w.write_gltf(dir_ / "buffer.gltf");
+    w.doc["buffers"].push_back({{"byteLength", 16}});
+    std::ofstream(dir_ / "buffer.gltf") << w.doc.dump();
+    const Scene scene = load_gltf(dir_ / "buffer.gltf");
+    EXPECT_TRUE(any_warning(scene, "buffers[1]: no uri"));
+  }
+  {  // an animation channel whose target names no node (KHR_animation_pointer)
+    GltfWriter w;
+    const int node = w.add_mesh_node(w.triangle());
+    const int times = w.add_floats({0, 1}, "SCALAR", 1);
+    const int values = w.add_floats({0, 0, 0, 1, 0, 0}, "VEC3", 3);
+    w.doc["animations"] = {
+        {{"samplers", {{{"input", times}, {"output", values}}}},
+         {"channels",
+          {{{"sampler", 0}, {"target", {{"path", "pointer"}}}},
+           {{"sampler", 0}, {"target", {{"node", node}, {"path", "translation"}}}}}}}};
+    w.write_gltf(dir_ / "pointer.gltf");
+    const Scene scene = load_gltf(dir_ / "pointer.gltf");
+    EXPECT_TRUE(any_warning(scene, "animations[0].channels[0]: the target names no node"));
+    ASSERT_EQ(scene.animations.size(), 1u);
+    EXPECT_EQ(scene.animations[0].channels.size(), 1u);
+  }
+}
+
 TEST_F(GltfLoader, NodeCycleIsAnError) {
   GltfWriter w;
   w.add_node({{"children", {1}}});

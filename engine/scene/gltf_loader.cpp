@@ -227,17 +227,20 @@ class Loader {
   }
 
   // Documents the specification allows and the parser refuses, rewritten (gltf_normalize).
+  // The JSON of a .gltf, or of a GLB's JSON chunk ("" when the container is malformed: the
+  // parser says what is wrong).
+  static std::string json_text_of(const std::vector<unsigned char>& bytes, bool binary) {
+    if (!binary) return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    uint32_t json_length = 0;
+    if (bytes.size() < 20) return {};
+    std::memcpy(&json_length, bytes.data() + 12, sizeof json_length);
+    if (size_t{json_length} > bytes.size() - 20) return {};
+    return std::string(reinterpret_cast<const char*>(bytes.data()) + 20, json_length);
+  }
+
   void rewrite_what_the_parser_refuses(std::vector<unsigned char>& bytes, bool binary) {
-    std::string text;
-    if (binary) {
-      uint32_t json_length = 0;
-      if (bytes.size() < 20) return;
-      std::memcpy(&json_length, bytes.data() + 12, sizeof json_length);
-      if (size_t{json_length} > bytes.size() - 20) return;  // the parser says what is wrong
-      text.assign(reinterpret_cast<const char*>(bytes.data()) + 20, json_length);
-    } else {
-      text.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    }
+    const std::string text = json_text_of(bytes, binary);
+    if (text.empty()) return;
     const std::optional<NormalizedGltf> normalized = normalize_gltf_json(text, binary);
     if (!normalized || !normalized->changed) return;
     if (binary) {
@@ -310,6 +313,15 @@ class Loader {
       if (!line.empty()) warn(line);
     }
     if (!ok || !err.empty()) {
+      // A buffer file that is not there: name the field and the folder looked in.
+      const std::vector<std::string> missing =
+          missing_referenced_files(json_text_of(bytes, binary), path_.parent_path());
+      for (const std::string& m : missing) {
+        if (m.rfind("buffers", 0) == 0) {
+          const size_t colon = m.find(": ");
+          fail(m.substr(0, colon), m.substr(colon + 2));
+        }
+      }
       while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
       fail(binary ? "glb" : "gltf",
            "not a valid glTF 2.0 file: " + (err.empty() ? std::string("parse failed") : err));

@@ -107,6 +107,28 @@ std::optional<NormalizedGltf> normalize_gltf_json(const std::string& text, bool 
   return out;
 }
 
+std::vector<std::string> missing_referenced_files(const std::string& text,
+                                                  const std::filesystem::path& base_dir) {
+  std::vector<std::string> missing;
+  const json doc = json::parse(text, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return missing;
+  for (const char* list : {"buffers", "images"}) {
+    if (!doc.contains(list) || !doc[list].is_array()) continue;
+    for (size_t i = 0; i < doc[list].size(); ++i) {
+      const json& item = doc[list][i];
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      if (uri.rfind("data:", 0) == 0) continue;
+      std::error_code ec;
+      if (!std::filesystem::exists(base_dir / uri, ec)) {
+        missing.push_back(std::string(list) + "[" + std::to_string(i) + "].uri: file '" + uri +
+                          "' not found in " + base_dir.string());
+      }
+    }
+  }
+  return missing;
+}
+
 std::optional<std::vector<unsigned char>> replace_glb_json(const std::vector<unsigned char>& glb,
                                                            const std::string& json_text) {
   const auto u32 = [&](size_t at) {

@@ -4,6 +4,7 @@
 // and reports each rewrite as a warning.
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,12 @@ struct NormalizedGltf {
 // KHR_animation_pointer writes them) are dropped. std::nullopt when `json` is not JSON: the
 // parser's own message then says why.
 std::optional<NormalizedGltf> normalize_gltf_json(const std::string& json, bool glb);
+
+// "buffers[0].uri: file 'x.bin' not found in DIR" for every buffer or image uri (not a data URI)
+// that names no file next to the document: the parser's own message names neither the field
+// nor the folder.
+std::vector<std::string> missing_referenced_files(const std::string& json,
+                                                  const std::filesystem::path& base_dir);
 
 // A GLB with its JSON chunk replaced by `json` (padded with spaces), the other chunks kept.
 // std::nullopt when `glb` is not a well-formed GLB container.

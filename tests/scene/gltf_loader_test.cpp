@@ -428,6 +428,18 @@ TEST_F(GltfLoader, SpecificationAllowedDocumentsTheParserRefusedLoad) {
   }
 }
 
+TEST_F(GltfLoader, MissingBufferFileNamesTheFieldAndTheFolder) {
+  GltfWriter w;
+  w.add_mesh_node(w.triangle());
+  w.write_gltf(dir_ / "moved.gltf");
+  std::filesystem::remove(dir_ / "moved.bin");
+  const std::string message = load_error(dir_ / "moved.gltf");
+  EXPECT_TRUE(contains(message, (dir_ / "moved.gltf").string() +
+                                    ": buffers[0].uri: file 'moved.bin' not found in " +
+                                    dir_.string()))
+      << message;
+}
+
 TEST_F(GltfLoader, NodeCycleIsAnError) {
   GltfWriter w;
   w.add_node({{"children", {1}}});

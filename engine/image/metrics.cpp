@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/image/flip.hpp"
+
 namespace voxgi::image {
 namespace {
 
@@ -123,6 +125,7 @@ ImageMetrics compare_images(const ImageRGBA32F& image, const ImageRGBA32F& refer
             : 0.0;
   }
   m.ssim_luminance = ssim_of(lum_a, lum_b, image.width, image.height);
+  m.hdr_flip = hdr_flip(image, reference).mean;
   return m;
 }
 

@@ -32,6 +32,7 @@ TEST(ImageMetrics, IdenticalImagesHaveNoError) {
   EXPECT_DOUBLE_EQ(m.rel_mse, 0.0);
   EXPECT_NEAR(m.ssim_luminance, 1.0, 1e-12);
   EXPECT_DOUBLE_EQ(m.luminance_bias, 0.0);
+  EXPECT_DOUBLE_EQ(m.hdr_flip, 0.0);
   EXPECT_EQ(m.compared_pixels, 256u);
 }
 
@@ -82,6 +83,8 @@ TEST(ImageMetrics, SsimDropsForNoiseButNotForIdenticalStructure) {
   }
   EXPECT_NEAR(compare_images(checker, checker).ssim_luminance, 1.0, 1e-12);
   EXPECT_LT(compare_images(noisy, checker).ssim_luminance, 0.5);
+  // HDR-FLIP sees the same difference (flip_test.cpp tests it on its own).
+  EXPECT_GT(compare_images(noisy, checker).hdr_flip, 0.1);
 }
 
 TEST(ImageMetrics, NonFinitePixelsAreCountedNotAveraged) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace voxgi::image {
 namespace {
@@ -73,30 +74,36 @@ double hyab(const Vec3& a, const Vec3& b) {
 }
 
 // Separable convolution with clamped edges: `horizontal` along x, then `vertical` along y.
+// Each pass adds one weighted, shifted copy of a (padded) row per tap, a loop over x that the
+// compiler vectorises; HDR-FLIP runs it dozens of times per exposure on full frames.
 Plane convolve(const Plane& src, uint32_t w, uint32_t h, const std::vector<double>& horizontal,
                const std::vector<double>& vertical) {
   const int rx = static_cast<int>(horizontal.size() / 2);
   const int ry = static_cast<int>(vertical.size() / 2);
-  Plane rows(src.size()), result(src.size());
+  const std::vector<float> wx(horizontal.begin(), horizontal.end());
+  const std::vector<float> wy(vertical.begin(), vertical.end());
+  Plane rows(src.size()), result(src.size(), 0.0f);
+  std::vector<float> padded(size_t(w) + 2 * size_t(rx));
   for (uint32_t y = 0; y < h; ++y) {
     const float* line = src.data() + size_t(y) * w;
-    for (uint32_t x = 0; x < w; ++x) {
-      double sum = 0.0;
-      for (int i = -rx; i <= rx; ++i) {
-        const int sx = std::clamp(static_cast<int>(x) + i, 0, static_cast<int>(w) - 1);
-        sum += horizontal[size_t(i + rx)] * line[sx];
-      }
-      rows[size_t(y) * w + x] = static_cast<float>(sum);
+    for (int i = 0; i < static_cast<int>(padded.size()); ++i) {
+      padded[size_t(i)] = line[std::clamp(i - rx, 0, static_cast<int>(w) - 1)];
+    }
+    float* out = rows.data() + size_t(y) * w;
+    std::fill(out, out + w, 0.0f);
+    for (size_t tap = 0; tap < wx.size(); ++tap) {
+      const float weight = wx[tap];
+      const float* shifted = padded.data() + tap;
+      for (uint32_t x = 0; x < w; ++x) out[x] += weight * shifted[x];
     }
   }
   for (uint32_t y = 0; y < h; ++y) {
-    for (uint32_t x = 0; x < w; ++x) {
-      double sum = 0.0;
-      for (int i = -ry; i <= ry; ++i) {
-        const int sy = std::clamp(static_cast<int>(y) + i, 0, static_cast<int>(h) - 1);
-        sum += vertical[size_t(i + ry)] * rows[size_t(sy) * w + x];
-      }
-      result[size_t(y) * w + x] = static_cast<float>(sum);
+    float* out = result.data() + size_t(y) * w;
+    for (int i = -ry; i <= ry; ++i) {
+      const int sy = std::clamp(static_cast<int>(y) + i, 0, static_cast<int>(h) - 1);
+      const float weight = wy[size_t(i + ry)];
+      const float* line = rows.data() + size_t(sy) * w;
+      for (uint32_t x = 0; x < w; ++x) out[x] += weight * line[x];
     }
   }
   return result;
@@ -374,20 +381,35 @@ HdrFlipResult hdr_flip(const ImageRGBA32F& test, const ImageRGBA32F& reference,
   const double step =
       (result.stop_exposure - result.start_exposure) / static_cast<double>(result.exposures - 1);
 
+  // Exposures are independent: each worker thread takes every k-th one and keeps its own
+  // per-pixel maximum (a full-HD frame costs about half a second per exposure on one core).
   const FeatureKernels kernels = feature_kernels(options.pixels_per_degree);
-  result.error.assign(n, 0.0f);
-  std::vector<Vec3> a_ldr(n), b_ldr(n);
-  for (uint32_t e = 0; e < result.exposures; ++e) {
-    const double scale = std::exp2(result.start_exposure + step * e);
-    for (size_t i = 0; i < n; ++i) {
-      for (size_t c = 0; c < 3; ++c) {
-        a_ldr[i][c] = std::clamp(flip_tone_map(scale * a[i][c]), 0.0, 1.0);
-        b_ldr[i][c] = std::clamp(flip_tone_map(scale * b[i][c]), 0.0, 1.0);
+  const uint32_t workers =
+      std::clamp(std::thread::hardware_concurrency(), 1u, std::min(result.exposures, 8u));
+  std::vector<std::vector<float>> maxima(workers, std::vector<float>(n, 0.0f));
+  const auto work = [&](uint32_t worker) {
+    std::vector<Vec3> a_ldr(n), b_ldr(n);
+    for (uint32_t e = worker; e < result.exposures; e += workers) {
+      const double scale = std::exp2(result.start_exposure + step * e);
+      for (size_t i = 0; i < n; ++i) {
+        for (size_t c = 0; c < 3; ++c) {
+          a_ldr[i][c] = std::clamp(flip_tone_map(scale * a[i][c]), 0.0, 1.0);
+          b_ldr[i][c] = std::clamp(flip_tone_map(scale * b[i][c]), 0.0, 1.0);
+        }
       }
+      const std::vector<float> error =
+          ldr_flip_of(a_ldr, b_ldr, test.width, test.height, options.pixels_per_degree, kernels);
+      std::vector<float>& maximum = maxima[worker];
+      for (size_t i = 0; i < n; ++i) maximum[i] = std::max(maximum[i], error[i]);
     }
-    const std::vector<float> error =
-        ldr_flip_of(a_ldr, b_ldr, test.width, test.height, options.pixels_per_degree, kernels);
-    for (size_t i = 0; i < n; ++i) result.error[i] = std::max(result.error[i], error[i]);
+  };
+  std::vector<std::thread> threads;
+  for (uint32_t worker = 1; worker < workers; ++worker) threads.emplace_back(work, worker);
+  work(0);
+  for (std::thread& thread : threads) thread.join();
+  result.error = std::move(maxima[0]);
+  for (uint32_t worker = 1; worker < workers; ++worker) {
+    for (size_t i = 0; i < n; ++i) result.error[i] = std::max(result.error[i], maxima[worker][i]);
   }
   result.mean = mean_of(result.error);
   return result;

@@ -16,7 +16,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/voxgi/bench_hash.hpp"
 #include "apps/voxgi/bench_progress.hpp"
 #include "apps/voxgi/bench_reference.hpp"
 #include "apps/voxgi/bench_results.hpp"
@@ -28,7 +27,6 @@
 #include "apps/voxgi/commands.hpp"
 #include "apps/voxgi/report_markdown.hpp"
 #include "engine/image/error_map.hpp"
-#include "engine/image/flip.hpp"
 #include "engine/image/metrics.hpp"
 #include "engine/runtime/scene_source.hpp"
 
@@ -124,36 +122,6 @@ std::string changed_settings(const std::map<std::string, std::string>& set,
     text += (text.empty() ? "" : " ") + key + "=" + value;
   }
   return text;
-}
-
-// Mean Rec. 709 luminance over the finite pixels.
-double mean_luminance(const image::ImageRGBA32F& picture) {
-  double sum = 0.0;
-  size_t count = 0;
-  for (size_t i = 0; i + 3 < picture.pixels.size(); i += 4) {
-    const float* p = picture.pixels.data() + i;
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
-    sum += image::luminance(p);
-    ++count;
-  }
-  return count ? sum / static_cast<double>(count) : 0.0;
-}
-
-// Display-referred picture of an image reference for the report: the ACES curve HDR-FLIP
-// uses, then the sRGB encoding (the graphs' display LUT needs the device).
-image::ImageRGBA32F display_picture(const image::ImageRGBA32F& linear) {
-  image::ImageRGBA32F picture = linear;
-  for (size_t i = 0; i < picture.pixels.size(); i += 4) {
-    for (size_t c = 0; c < 3; ++c) {
-      const float v = picture.pixels[i + c];
-      const double mapped =
-          std::clamp(image::flip_tone_map(std::isfinite(v) ? std::max(0.0f, v) : 0.0f), 0.0, 1.0);
-      picture.pixels[i + c] = static_cast<float>(
-          mapped <= 0.0031308 ? 12.92 * mapped : 1.055 * std::pow(mapped, 1.0 / 2.4) - 0.055);
-    }
-    picture.pixels[i + 3] = 1.0f;
-  }
-  return picture;
 }
 
 fs::path default_out_dir(const BenchSpec& spec) {
@@ -346,8 +314,8 @@ class BenchRun {
     if (!same_bounce->indirect) return s;
     if (indirect) s.indirect = image::compare_images(*indirect, *same_bounce->indirect);
     if (full && full->indirect) {
-      s.missing_fraction = missing_indirect_fraction(mean_luminance(*full->indirect),
-                                                     mean_luminance(*same_bounce->indirect));
+      s.missing_fraction = missing_indirect_fraction(image::mean_luminance(*full->indirect),
+                                                     image::mean_luminance(*same_bounce->indirect));
     }
     return s;
   }
@@ -356,33 +324,7 @@ class BenchRun {
   // resolution) before anything is rendered.
   ReferenceTarget image_reference_target(const BenchConfiguration& config) {
     const BenchReference& ref = spec_.reference;
-    if (!image_reference_) {
-      ReferenceImages images;
-      Hasher hasher;
-      hasher.add("voxgi-reference-image-1");
-      const auto read = [&](const BenchReferenceImage& source, const std::string& field) {
-        hasher.add_file(source.file);
-        try {
-          return image::read_exr(source.file);
-        } catch (const std::exception& e) {
-          fail_at(source.loc, field,
-                  "cannot read '" + source.file_as_written + "': " + std::string(e.what()));
-        }
-      };
-      images.linear = read(ref.image, "reference.image");
-      if (!ref.indirect.file_as_written.empty()) {
-        images.indirect = read(ref.indirect, "reference.indirect");
-        if (images.indirect->width != images.linear.width ||
-            images.indirect->height != images.linear.height) {
-          fail_at(ref.indirect.loc, "reference.indirect",
-                  "'" + ref.indirect.file_as_written + "' is " + size_text(*images.indirect) +
-                      " but the image '" + ref.image.file_as_written + "' is " +
-                      size_text(images.linear));
-        }
-      }
-      images.key = hasher.hex();
-      image_reference_ = std::move(images);
-    }
+    if (!image_reference_) image_reference_ = read_reference_images(ref);
     if (image_reference_->linear.width != config.width ||
         image_reference_->linear.height != config.height) {
       fail_at(ref.image.loc, "reference.image",

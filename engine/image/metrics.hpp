@@ -37,5 +37,7 @@ struct ImageMetrics {
 ImageMetrics compare_images(const ImageRGBA32F& image, const ImageRGBA32F& reference);
 
 double luminance(const float* rgba);
+// Mean luminance over the pixels whose RGB are finite; 0 for an empty image.
+double mean_luminance(const ImageRGBA32F& image);
 
 }  // namespace voxgi::image

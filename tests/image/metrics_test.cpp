@@ -63,6 +63,14 @@ TEST(ImageMetrics, TooDarkGivesNegativeBias) {
   EXPECT_NEAR(m.luminance_bias, -0.5, 1e-6);
 }
 
+TEST(ImageMetrics, MeanLuminanceLeavesNonFinitePixelsOut) {
+  ImageRGBA32F image = filled(2, 1, 1, 1, 1);
+  EXPECT_NEAR(mean_luminance(image), 1.0, 1e-12);
+  image.at(1, 0)[0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NEAR(mean_luminance(image), 1.0, 1e-12);
+  EXPECT_EQ(mean_luminance(ImageRGBA32F()), 0.0);
+}
+
 TEST(ImageMetrics, SsimOfAConstantShiftMatchesTheFormula) {
   // Constant images: variances and covariance vanish, so SSIM is the luminance term
   // (2 μa μb + C1) / (μa² + μb² + C1) on the compressed luminances y / (1 + y).

@@ -279,7 +279,9 @@ class BenchRun {
     r.reference_key = reference.key;
     r.reference_cache_hit = reference.cache_hit;
     if (refs.model) {
-      r.same_bounce = same_bounce_result(*refs.model, run, full_like_split, same_bounce);
+      r.same_bounce = same_bounce_result(*refs.model, run, reference, full_like_split, same_bounce);
+      // The bench's reference already split alike: the comparison is the one made above.
+      if (full_like_split == &reference) r.same_bounce->full_indirect = r.indirect;
       if (refs.same_bounce) r.same_bounce->reference_set = refs.same_bounce->set;
     }
     write_images(r, run, reference);
@@ -294,7 +296,10 @@ class BenchRun {
 
   // The like-with-like part of a result: the technique's indirect against the same-bounce
   // reference, and what the full reference's indirect has beyond that one's.
+  // `full` is the full reference split alike; when it is `reference` itself, the caller
+  // already compared with it.
   static SameBounceResult same_bounce_result(const IndirectModel& model, const RenderRun& run,
+                                             const ReferenceImages& reference,
                                              const ReferenceImages* full,
                                              const ReferenceImages* same_bounce) {
     SameBounceResult s;
@@ -302,11 +307,9 @@ class BenchRun {
     s.brdf = model.brdf();
     const image::ImageRGBA32F* indirect =
         run.outputs.count("indirect") ? &run.outputs.at("indirect") : nullptr;
-    if (full) {
-      s.full_reference_key = full->key;
-      if (indirect && full->indirect) {
-        s.full_indirect = image::compare_images(*indirect, *full->indirect);
-      }
+    if (full) s.full_reference_key = full->key;
+    if (full && full != &reference && indirect && full->indirect) {
+      s.full_indirect = image::compare_images(*indirect, *full->indirect);
     }
     if (!same_bounce) return s;
     s.reference_key = same_bounce->key;

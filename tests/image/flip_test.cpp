@@ -141,6 +141,19 @@ TEST(Flip, NonFinitePixelsCountAsBlackAndBlackReferencesWork) {
   EXPECT_GT(black.mean, 0.0);
 }
 
+TEST(Flip, AgreesWithThePublishedImplementation) {
+  // Means the authors' FLIP tool (v1.6, default viewing conditions, ACES) printed for these
+  // pairs written as 32-bit EXR files: the pattern shifted by 3 pixels, and 30% brighter.
+  const ImageRGBA32F reference = pattern(128, 0, 1.0f);
+  EXPECT_NEAR(hdr_flip(pattern(128, 3, 1.0f), reference).mean, 0.152512, 5e-5);
+  const HdrFlipResult brighter = hdr_flip(pattern(128, 0, 1.3f), reference);
+  EXPECT_NEAR(brighter.mean, 0.267037, 5e-5);
+  // The tool's exposure range for this reference: -3.0288 to 2.8754 in 6 exposures.
+  EXPECT_NEAR(brighter.start_exposure, -3.0288, 5e-5);
+  EXPECT_NEAR(brighter.stop_exposure, 2.8754, 5e-5);
+  EXPECT_EQ(brighter.exposures, 6u);
+}
+
 TEST(Flip, MismatchedSizesThrow) {
   EXPECT_THROW(hdr_flip(filled(8, 8, 0, 0, 0), filled(8, 9, 0, 0, 0)), std::invalid_argument);
   EXPECT_THROW(ldr_flip(ImageRGBA32F(), ImageRGBA32F()), std::invalid_argument);

@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -18,6 +20,7 @@
 #include "apps/voxgi/bench_reference.hpp"
 #include "apps/voxgi/bench_results.hpp"
 #include "apps/voxgi/bench_runner.hpp"
+#include "apps/voxgi/bench_same_bounce.hpp"
 #include "apps/voxgi/bench_spec.hpp"
 #include "apps/voxgi/bench_subcommands.hpp"
 #include "apps/voxgi/cli_args.hpp"
@@ -81,18 +84,44 @@ void check_outputs(const graph::CompiledGraph& compiled, const std::string& file
 
 struct ReferenceTarget {
   std::string key;
-  std::string description;  // JSON kept beside the cached images
+  std::string description;                 // JSON kept beside the cached images
+  std::map<std::string, std::string> set;  // the reference graph's overrides
+  std::string what;                        // "reference", "same-bounce reference (...)"
+  bool image = false;                      // the bench's image-file reference
+};
+
+// The references one configuration is compared with.
+struct ConfigReferences {
+  ReferenceTarget full;
+  std::optional<IndirectModel> model;  // what the graph declares its indirect light holds
+  std::optional<ReferenceTarget> same_bounce;
+  // The full reference with the technique's direct/indirect split (deferred_layers), or the
+  // image reference: the bounces the technique leaves out are measured against it.
+  std::optional<ReferenceTarget> full_like_split;
 };
 
 nlohmann::json reference_description(const BenchSpec& spec, const BenchScene& scene,
-                                     const std::string& camera, uint32_t width, uint32_t height) {
+                                     const std::string& camera, uint32_t width, uint32_t height,
+                                     const std::map<std::string, std::string>& set) {
   return {{"scene", scene.label},
           {"camera", camera},
           {"width", width},
           {"height", height},
           {"graph", spec.reference.file_as_written},
           {"frames", spec.reference.frames},
-          {"set", spec.reference.set}};
+          {"set", set}};
+}
+
+// "max_depth=2 deferred_layers=true lambert=true": what a same-bounce reference changes.
+std::string changed_settings(const std::map<std::string, std::string>& set,
+                             const std::map<std::string, std::string>& base) {
+  std::string text;
+  for (const auto& [key, value] : set) {
+    auto it = base.find(key);
+    if (it != base.end() && it->second == value) continue;
+    text += (text.empty() ? "" : " ") + key + "=" + value;
+  }
+  return text;
 }
 
 fs::path default_out_dir(const BenchSpec& spec) {
@@ -131,34 +160,77 @@ class BenchRun {
       } catch (const std::exception& e) {
         fail_at(bench_scene.loc, scene_field + ".cameras", e.what());
       }
+      std::optional<IndirectModel> model;
       try {
-        const graph::CompiledGraph compiled = catalog_.compile(
-            catalog_.graph(entry.file), *scene, config.width, config.height, config.overrides);
+        const graph::GraphDesc& desc = catalog_.graph(entry.file);
+        const graph::CompiledGraph compiled =
+            catalog_.compile(desc, *scene, config.width, config.height, config.overrides);
         check_outputs(compiled, entry.file_as_written, entry.loc, config_field(config));
+        model = indirect_model_of(desc, compiled.parameters);
       } catch (const std::exception& e) {
         fail_at(entry.loc, config_field(config),
                 "configuration " + config.id + " (" + config.label(spec_) + ") on '" +
                     bench_scene.label + "': " + e.what());
       }
-      const graph::GraphDesc& reference_desc = catalog_.graph(spec_.reference.file);
-      try {
-        const graph::CompiledGraph compiled = catalog_.compile(reference_desc, *scene, config.width,
-                                                               config.height, spec_.reference.set);
-        check_outputs(compiled, spec_.reference.file_as_written, spec_.reference.loc, "reference");
-      } catch (const std::exception& e) {
-        fail_at(spec_.reference.loc, "reference",
-                "on '" + bench_scene.label + "': " + std::string(e.what()));
+      ConfigReferences& refs = references_of_[config.index];
+      refs.model = model;
+      if (spec_.reference.is_image()) {
+        refs.full = image_reference_target(config);
       }
-      reference_of_[config.index] = {
-          reference_key(spec_.reference, reference_desc, bench_scene.source, *scene, camera,
-                        config.width, config.height, shader_root),
-          reference_description(spec_, bench_scene, config.camera, config.width, config.height)
-              .dump(2)};
+      if (model && spec_.reference.is_image()) refs.full_like_split = refs.full;
+      if (!spec_.reference.has_graph()) continue;
+      const graph::GraphDesc& reference_desc = catalog_.graph(spec_.reference.file);
+      const auto target_for = [&](const std::map<std::string, std::string>& set,
+                                  const std::string& what) {
+        try {
+          const graph::CompiledGraph compiled =
+              catalog_.compile(reference_desc, *scene, config.width, config.height, set);
+          check_outputs(compiled, spec_.reference.file_as_written, spec_.reference.loc,
+                        "reference");
+        } catch (const std::exception& e) {
+          fail_at(spec_.reference.loc, "reference",
+                  what + " on '" + bench_scene.label + "': " + std::string(e.what()));
+        }
+        BenchReference reference = spec_.reference;
+        reference.set = set;
+        return ReferenceTarget{reference_key(reference, reference_desc, bench_scene.source, *scene,
+                                             camera, config.width, config.height, shader_root),
+                               reference_description(spec_, bench_scene, config.camera,
+                                                     config.width, config.height, set)
+                                   .dump(2),
+                               set, what, false};
+      };
+      if (!spec_.reference.is_image()) refs.full = target_for(spec_.reference.set, "reference");
+      if (!model) continue;
+      const std::string pass = path_tracer_pass_of(reference_desc);
+      if (pass.empty()) {
+        if (!warned_no_path_tracer_) {
+          std::cerr << "voxgi: bench: note: no same-bounce references: the reference graph '"
+                    << spec_.reference.file_as_written
+                    << "' has no pass of type reference.path_tracer\n";
+          warned_no_path_tracer_ = true;
+        }
+        continue;
+      }
+      const std::map<std::string, std::string> set =
+          same_bounce_reference_set(spec_.reference.set, pass, *model);
+      refs.same_bounce = target_for(
+          set, "same-bounce reference (" + changed_settings(set, spec_.reference.set) + ")");
+      if (!spec_.reference.is_image()) {
+        std::map<std::string, std::string> full_set = spec_.reference.set;
+        full_set[pass + ".deferred_layers"] = "true";
+        // The bench's own reference when it already splits that way.
+        refs.full_like_split =
+            full_set == spec_.reference.set
+                ? refs.full
+                : target_for(full_set, "reference split as deferred lighting + GI (" +
+                                           changed_settings(full_set, spec_.reference.set) + ")");
+      }
     }
   }
 
-  const std::string& reference_key_of(const BenchConfiguration& config) const {
-    return reference_of_.at(config.index).key;
+  const ConfigReferences& references_of(const BenchConfiguration& config) const {
+    return references_of_.at(config.index);
   }
 
   ConfigResult measure(const BenchConfiguration& config, BenchRenderer& renderer,
@@ -168,7 +240,17 @@ class BenchRun {
     progress.starting(config.id + " " + config.label(spec_));
     scene::Scene& scene = catalog_.scene(spec_.scenes[config.scene].source);
     const scene::Camera camera = camera_of(scene, config);
-    const ReferenceImages& reference = reference_for(config, scene, camera, renderer, progress);
+    const ConfigReferences& refs = references_of_.at(config.index);
+    const ReferenceImages& reference =
+        reference_for(config, refs.full, scene, camera, renderer, progress);
+    const ReferenceImages* same_bounce =
+        refs.same_bounce
+            ? &reference_for(config, *refs.same_bounce, scene, camera, renderer, progress)
+            : nullptr;
+    const ReferenceImages* full_like_split =
+        refs.full_like_split
+            ? &reference_for(config, *refs.full_like_split, scene, camera, renderer, progress)
+            : nullptr;
 
     const graph::CompiledGraph compiled = catalog_.compile(
         catalog_.graph(entry.file), scene, config.width, config.height, config.overrides);
@@ -196,6 +278,12 @@ class BenchRun {
     }
     r.reference_key = reference.key;
     r.reference_cache_hit = reference.cache_hit;
+    if (refs.model) {
+      r.same_bounce = same_bounce_result(*refs.model, run, reference, full_like_split, same_bounce);
+      // The bench's reference already split alike: the comparison is the one made above.
+      if (full_like_split == &reference) r.same_bounce->full_indirect = r.indirect;
+      if (refs.same_bounce) r.same_bounce->reference_set = refs.same_bounce->set;
+    }
     write_images(r, run, reference);
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return r;
@@ -206,35 +294,92 @@ class BenchRun {
     return choose_camera(scene, config.camera == "default" ? "" : config.camera);
   }
 
-  // From this run's references, else the cache, else rendered now and stored in the cache.
-  const ReferenceImages& reference_for(const BenchConfiguration& config, const scene::Scene& scene,
+  // The like-with-like part of a result: the technique's indirect against the same-bounce
+  // reference, and what the full reference's indirect has beyond that one's.
+  // `full` is the full reference split alike; when it is `reference` itself, the caller
+  // already compared with it.
+  static SameBounceResult same_bounce_result(const IndirectModel& model, const RenderRun& run,
+                                             const ReferenceImages& reference,
+                                             const ReferenceImages* full,
+                                             const ReferenceImages* same_bounce) {
+    SameBounceResult s;
+    s.bounces = model.bounces;
+    s.brdf = model.brdf();
+    const image::ImageRGBA32F* indirect =
+        run.outputs.count("indirect") ? &run.outputs.at("indirect") : nullptr;
+    if (full) s.full_reference_key = full->key;
+    if (full && full != &reference && indirect && full->indirect) {
+      s.full_indirect = image::compare_images(*indirect, *full->indirect);
+    }
+    if (!same_bounce) return s;
+    s.reference_key = same_bounce->key;
+    s.reference_cache_hit = same_bounce->cache_hit;
+    if (!same_bounce->indirect) return s;
+    if (indirect) s.indirect = image::compare_images(*indirect, *same_bounce->indirect);
+    if (full && full->indirect) {
+      s.missing_fraction = missing_indirect_fraction(image::mean_luminance(*full->indirect),
+                                                     image::mean_luminance(*same_bounce->indirect));
+    }
+    return s;
+  }
+
+  // The image reference of the bench file, read (and checked against every configuration's
+  // resolution) before anything is rendered.
+  ReferenceTarget image_reference_target(const BenchConfiguration& config) {
+    const BenchReference& ref = spec_.reference;
+    if (!image_reference_) image_reference_ = read_reference_images(ref);
+    if (image_reference_->linear.width != config.width ||
+        image_reference_->linear.height != config.height) {
+      fail_at(ref.image.loc, "reference.image",
+              "'" + ref.image.file_as_written + "' is " + size_text(image_reference_->linear) +
+                  " but configuration " + config.id + " renders " + std::to_string(config.width) +
+                  "x" + std::to_string(config.height));
+    }
+    return ReferenceTarget{image_reference_->key, {}, {}, "reference image", true};
+  }
+
+  static std::string size_text(const image::ImageRGBA32F& picture) {
+    return std::to_string(picture.width) + "x" + std::to_string(picture.height);
+  }
+
+  // The image reference; else from this run's references, else the cache, else rendered now
+  // and stored in the cache.
+  const ReferenceImages& reference_for(const BenchConfiguration& config,
+                                       const ReferenceTarget& target, const scene::Scene& scene,
                                        const scene::Camera& camera, BenchRenderer& renderer,
                                        BenchProgress& progress) {
-    const ReferenceTarget& target = reference_of_.at(config.index);
+    if (target.image) {
+      if (image_reference_->display_png.empty()) {
+        image_reference_->display_png =
+            out_dir_ / "images" / ("reference-image-" + target.key + ".png");
+        image::write_png(image_reference_->display_png, display_picture(image_reference_->linear));
+      }
+      return *image_reference_;
+    }
     if (auto known = references_.find(target.key); known != references_.end()) {
       return known->second;
     }
     const std::string where = where_of(spec_, config);
     const std::string entry = (cache_.dir() / target.key).string();
     if (std::optional<ReferenceImages> cached = cache_.find(target.key)) {
-      progress.note("voxgi: bench: reference for " + where + ": cache hit (" + entry + ")");
+      progress.note("voxgi: bench: " + target.what + " for " + where + ": cache hit (" + entry +
+                    ")");
       return references_.emplace(target.key, std::move(*cached)).first->second;
     }
     const uint32_t frames = spec_.reference.frames;
-    progress.note("voxgi: bench: reference for " + where + ": not cached, rendering " +
+    progress.note("voxgi: bench: " + target.what + " for " + where + ": not cached, rendering " +
                   std::to_string(frames) + " frames of " + spec_.reference.file_as_written);
     const auto start = Clock::now();
-    const graph::CompiledGraph compiled =
-        catalog_.compile(catalog_.graph(spec_.reference.file), scene, config.width, config.height,
-                         spec_.reference.set);
+    const graph::CompiledGraph compiled = catalog_.compile(
+        catalog_.graph(spec_.reference.file), scene, config.width, config.height, target.set);
     const RenderRun run = renderer.render(
         compiled, catalog_.registry(), scene, camera, 0, frames, [&](uint32_t done) {
-          progress.step("reference for " + where + ": frame " + std::to_string(done) + "/" +
+          progress.step(target.what + " for " + where + ": frame " + std::to_string(done) + "/" +
                         std::to_string(frames));
         });
     ReferenceImages stored = cache_.store(target.key, run.outputs, target.description);
     progress.note(
-        "voxgi: bench: reference rendered in " +
+        "voxgi: bench: " + target.what + " rendered in " +
         BenchProgress::duration_text(std::chrono::duration<double>(Clock::now() - start).count()) +
         ", cached as " + entry);
     return references_.emplace(target.key, std::move(stored)).first->second;
@@ -262,8 +407,10 @@ class BenchRun {
   ReferenceCache& cache_;
   fs::path out_dir_;
   BenchCatalog catalog_;
-  std::map<size_t, ReferenceTarget> reference_of_;     // configuration index → its reference
+  std::map<size_t, ConfigReferences> references_of_;   // configuration index → its references
   std::map<std::string, ReferenceImages> references_;  // by key, for this run
+  std::optional<ReferenceImages> image_reference_;     // the bench file's "image"
+  bool warned_no_path_tracer_ = false;
 };
 
 std::string summary_of(const ConfigResult& r, const std::string& where) {
@@ -273,6 +420,9 @@ std::string summary_of(const ConfigResult& r, const std::string& where) {
                      report_number(r.times.gpu_total_ms.p90) + ")";
   if (r.full) text += ", relMSE " + report_number(r.full->rel_mse);
   if (r.indirect) text += ", indirect relMSE " + report_number(r.indirect->rel_mse);
+  if (r.same_bounce && r.same_bounce->indirect) {
+    text += " (same-bounce " + report_number(r.same_bounce->indirect->rel_mse) + ")";
+  }
   return text;
 }
 
@@ -321,9 +471,21 @@ int run_bench(const std::vector<std::string>& argv) {
               << " configurations" << (shard ? " (shard " + shard->text() + ")" : std::string())
               << "\n";
     for (const BenchConfiguration& config : selected) {
+      const ConfigReferences& refs = run.references_of(config);
+      const auto listed = [&](const ReferenceTarget& target) {
+        return target.key + (!target.image && cache.has_entry(target.key) ? ", cached" : "");
+      };
       std::cout << "  " << config.id << "  " << config.label(spec) << "  on "
-                << where_of(spec, config) << "  (reference " << run.reference_key_of(config)
-                << (cache.has_entry(run.reference_key_of(config)) ? ", cached" : "") << ")\n";
+                << where_of(spec, config) << "  (" << refs.full.what << " " << listed(refs.full)
+                << ")";
+      if (refs.model) {
+        std::cout << "  indirect: " << refs.model->bounces << " bounce"
+                  << (refs.model->bounces == 1 ? "" : "s") << ", " << refs.model->brdf();
+        if (refs.same_bounce) {
+          std::cout << "; " << refs.same_bounce->what << " " << listed(*refs.same_bounce);
+        }
+      }
+      std::cout << "\n";
     }
     return 0;
   }
@@ -344,8 +506,10 @@ int run_bench(const std::vector<std::string>& argv) {
   results.bench_file = args.positional()[0];  // as given: no machine paths in reports
   results.bench_hash = spec.content_hash;
   results.device = renderer.context().device_summary();
-  results.reference_graph = spec.reference.file_as_written;
-  results.reference_frames = spec.reference.frames;
+  // An image reference is recorded by its file, with 0 frames.
+  results.reference_graph = spec.reference.is_image() ? spec.reference.image.file_as_written
+                                                      : spec.reference.file_as_written;
+  results.reference_frames = spec.reference.is_image() ? 0 : spec.reference.frames;
   results.configurations_total = all.size();
   if (shard) results.shards.push_back(shard->text());
 

@@ -3,12 +3,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <vector>
 
 #include "apps/voxgi/bench_hash.hpp"
 #include "apps/voxgi/bench_results.hpp"
+#include "engine/image/flip.hpp"
 
 namespace voxgi::cli {
 namespace {
@@ -89,6 +91,55 @@ std::string reference_key(const BenchReference& reference, const graph::GraphDes
   for (const auto& [key, value] : reference.set) hasher.add(key).add(value);
   hasher.add_value(reference.frames);
   return hasher.hex();
+}
+
+ReferenceImages read_reference_images(const BenchReference& reference) {
+  Hasher hasher;
+  hasher.add("voxgi-reference-image-1");
+  const auto read = [&](const BenchReferenceImage& source, const std::string& field) {
+    try {
+      hasher.add_file(source.file);
+      return image::read_exr(source.file);
+    } catch (const std::exception& e) {
+      throw graph::GraphError(graph::Diagnostic{
+          source.loc, "", field,
+          "cannot read '" + source.file_as_written + "': " + std::string(e.what()), ""});
+    }
+  };
+  const auto size_text = [](const image::ImageRGBA32F& picture) {
+    return std::to_string(picture.width) + "x" + std::to_string(picture.height);
+  };
+  ReferenceImages images;
+  images.linear = read(reference.image, "reference.image");
+  if (!reference.indirect.file_as_written.empty()) {
+    images.indirect = read(reference.indirect, "reference.indirect");
+    if (images.indirect->width != images.linear.width ||
+        images.indirect->height != images.linear.height) {
+      throw graph::GraphError(graph::Diagnostic{
+          reference.indirect.loc, "", "reference.indirect",
+          "'" + reference.indirect.file_as_written + "' is " + size_text(*images.indirect) +
+              " but the image '" + reference.image.file_as_written + "' is " +
+              size_text(images.linear),
+          ""});
+    }
+  }
+  images.key = hasher.hex();
+  return images;
+}
+
+image::ImageRGBA32F display_picture(const image::ImageRGBA32F& linear) {
+  image::ImageRGBA32F picture = linear;
+  for (size_t i = 0; i + 3 < picture.pixels.size(); i += 4) {
+    for (size_t c = 0; c < 3; ++c) {
+      const float v = picture.pixels[i + c];
+      const double mapped =
+          std::clamp(image::flip_tone_map(std::isfinite(v) ? std::max(0.0f, v) : 0.0f), 0.0, 1.0);
+      picture.pixels[i + c] = static_cast<float>(
+          mapped <= 0.0031308 ? 12.92 * mapped : 1.055 * std::pow(mapped, 1.0 / 2.4) - 0.055);
+    }
+    picture.pixels[i + 3] = 1.0f;
+  }
+  return picture;
 }
 
 fs::path default_reference_cache_dir() {

@@ -35,6 +35,15 @@ std::string reference_key(const BenchReference& reference, const graph::GraphDes
 // ~/.cache/voxgi/references.
 std::filesystem::path default_reference_cache_dir();
 
+// The bench file's image reference ("reference": {"image", "indirect"}) with a key hashed from
+// the files' bytes. Throws GraphError at `reference.image` or `reference.indirect`, naming the
+// file, when one cannot be read or the two differ in size.
+ReferenceImages read_reference_images(const BenchReference& reference);
+
+// A display-referred picture of linear radiance for the report, where no graph's display
+// transform ran (image references): the ACES curve HDR-FLIP uses, then the sRGB encoding.
+image::ImageRGBA32F display_picture(const image::ImageRGBA32F& linear);
+
 class ReferenceCache {
  public:
   explicit ReferenceCache(std::filesystem::path dir) : dir_(std::move(dir)) {}

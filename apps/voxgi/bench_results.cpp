@@ -24,11 +24,27 @@ json spread_json(const Spread& s) {
   return {{"median", s.median}, {"min", s.min}, {"max", s.max}, {"p10", s.p10}, {"p90", s.p90}};
 }
 
+json metrics_json(const std::optional<image::ImageMetrics>& m);
+
+json same_bounce_json(const std::optional<SameBounceResult>& s) {
+  if (!s) return nullptr;
+  return {{"bounces", s->bounces},
+          {"brdf", s->brdf},
+          {"reference_set", s->reference_set},
+          {"reference_key", s->reference_key},
+          {"reference_cache_hit", s->reference_cache_hit},
+          {"indirect", metrics_json(s->indirect)},
+          {"full_indirect", metrics_json(s->full_indirect)},
+          {"full_reference_key", s->full_reference_key},
+          {"missing_fraction", s->missing_fraction ? json(*s->missing_fraction) : json(nullptr)}};
+}
+
 json metrics_json(const std::optional<image::ImageMetrics>& m) {
   if (!m) return nullptr;
   return {{"rel_mse", m->rel_mse},
           {"rmse", m->rmse},
           {"ssim_luminance", m->ssim_luminance},
+          {"hdr_flip", m->hdr_flip},
           {"luminance_bias", m->luminance_bias},
           {"mean_luminance", m->mean_luminance},
           {"mean_luminance_reference", m->mean_luminance_reference},
@@ -92,6 +108,8 @@ class Reader {
     m.rel_mse = number(v, "rel_mse", inner);
     m.rmse = number(v, "rmse", inner);
     m.ssim_luminance = number(v, "ssim_luminance", inner);
+    // Absent from results written before HDR-FLIP was measured.
+    if (v.contains("hdr_flip")) m.hdr_flip = number(v, "hdr_flip", inner);
     m.luminance_bias = number(v, "luminance_bias", inner);
     m.mean_luminance = number(v, "mean_luminance", inner);
     m.mean_luminance_reference = number(v, "mean_luminance_reference", inner);
@@ -99,6 +117,26 @@ class Reader {
     m.non_finite_reference_pixels = count(v, "non_finite_reference_pixels", inner);
     m.compared_pixels = count(v, "compared_pixels", inner);
     return m;
+  }
+  // Absent (results written before same-bounce references) or null: none.
+  std::optional<SameBounceResult> same_bounce(const json& object, const std::string& key,
+                                              const std::string& where) const {
+    if (!object.contains(key) || object.at(key).is_null()) return std::nullopt;
+    const json& v = object.at(key);
+    const std::string inner = where + key + ".";
+    SameBounceResult s;
+    s.bounces = static_cast<uint32_t>(count(v, "bounces", inner));
+    s.brdf = text(v, "brdf", inner);
+    s.reference_set = strings(v, "reference_set", inner);
+    s.reference_key = text(v, "reference_key", inner);
+    s.reference_cache_hit = flag(v, "reference_cache_hit", inner);
+    s.indirect = metrics(v, "indirect", inner);
+    s.full_indirect = metrics(v, "full_indirect", inner);
+    s.full_reference_key = text(v, "full_reference_key", inner);
+    if (!at(v, "missing_fraction", inner).is_null()) {
+      s.missing_fraction = number(v, "missing_fraction", inner);
+    }
+    return s;
   }
   [[noreturn]] void fail(const std::string& field, const std::string& message) const {
     throw std::runtime_error(file_ + ": field '" + field + "': " + message);
@@ -236,6 +274,7 @@ json to_json(const BenchResults& results) {
          {"metrics", {{"full", metrics_json(r.full)}, {"indirect", metrics_json(r.indirect)}}},
          {"reference_key", r.reference_key},
          {"reference_cache_hit", r.reference_cache_hit},
+         {"same_bounce", same_bounce_json(r.same_bounce)},
          {"images",
           {{"image", r.image_png}, {"reference", r.reference_png}, {"heat_map", r.heat_map_png}}},
          {"wall_seconds", r.wall_seconds}});
@@ -304,6 +343,7 @@ BenchResults results_from_json(const json& doc, const std::string& file) {
     r.indirect = read.metrics(metrics, "indirect", where + "metrics.");
     r.reference_key = read.text(item, "reference_key", where);
     r.reference_cache_hit = read.flag(item, "reference_cache_hit", where);
+    r.same_bounce = read.same_bounce(item, "same_bounce", where);
     const json& images = read.at(item, "images", where);
     r.image_png = read.text(images, "image", where + "images.");
     r.reference_png = read.text(images, "reference", where + "images.");
@@ -334,7 +374,11 @@ std::string results_csv(const BenchResults& results) {
          "frames,gpu_ms_median,gpu_ms_p10,gpu_ms_p90,gpu_ms_min,gpu_ms_max,cpu_ms_median,"
          "rel_mse,rmse,ssim_luminance,luminance_bias,non_finite_pixels,indirect_rel_mse,"
          "indirect_rmse,indirect_ssim_luminance,indirect_luminance_bias,reference_key,"
-         "reference_cache_hit\n";
+         "reference_cache_hit,hdr_flip,indirect_hdr_flip,indirect_bounces,indirect_brdf,"
+         "same_bounce_rel_mse,same_bounce_ssim_luminance,same_bounce_hdr_flip,"
+         "same_bounce_luminance_bias,full_indirect_rel_mse,full_indirect_ssim_luminance,"
+         "full_indirect_hdr_flip,full_indirect_luminance_bias,missing_indirect_fraction,"
+         "same_bounce_reference_key\n";
   for (const ConfigResult& r : results.results) {
     std::string overrides;
     for (const auto& [k, v] : r.overrides)
@@ -355,7 +399,26 @@ std::string results_csv(const BenchResults& results) {
         out << (m == &r.full ? ",,,,," : ",,,,");
       }
     }
-    out << ',' << r.reference_key << ',' << (r.reference_cache_hit ? "true" : "false") << '\n';
+    out << ',' << r.reference_key << ',' << (r.reference_cache_hit ? "true" : "false");
+    for (const auto* m : {&r.full, &r.indirect}) {
+      out << ',' << (*m ? number_text((*m)->hdr_flip) : "");
+    }
+    if (const std::optional<SameBounceResult>& s = r.same_bounce) {
+      out << ',' << s->bounces << ',' << s->brdf;
+      for (const auto* m : {&s->indirect, &s->full_indirect}) {
+        if (*m) {
+          out << ',' << number_text((*m)->rel_mse) << ',' << number_text((*m)->ssim_luminance)
+              << ',' << number_text((*m)->hdr_flip) << ',' << number_text((*m)->luminance_bias);
+        } else {
+          out << ",,,,";
+        }
+      }
+      out << ',' << (s->missing_fraction ? number_text(*s->missing_fraction) : "") << ','
+          << s->reference_key;
+    } else {
+      out << ",,,,,,,,,,,,";
+    }
+    out << '\n';
   }
   return out.str();
 }

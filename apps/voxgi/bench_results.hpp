@@ -42,6 +42,25 @@ struct FrameTimes {
 // `frames` are the executor's timings of each measured frame (the warm-up left out).
 FrameTimes summarize_frames(const std::vector<std::vector<graph::Executor::PassTiming>>& frames);
 
+// The technique's `indirect` against the path tracer limited to the bounces and BRDF terms the
+// graph declares (bench_same_bounce.hpp).
+struct SameBounceResult {
+  uint32_t bounces = 0;
+  std::string brdf;                                  // "diffuse" or "full"
+  std::map<std::string, std::string> reference_set;  // the reference graph's overrides
+  std::string reference_key;
+  bool reference_cache_hit = false;
+  // Approximation error: the technique against what it models.
+  std::optional<image::ImageMetrics> indirect;
+  // What a user sees: the technique against the full reference's indirect light, split as the
+  // technique splits it (the bench's reference with deferred_layers, or its image).
+  std::optional<image::ImageMetrics> full_indirect;
+  std::string full_reference_key;
+  // (full − same-bounce) / full mean luminance of the two references' `indirect`: what the
+  // technique leaves out by design (further bounces, BRDF terms it does not model).
+  std::optional<double> missing_fraction;
+};
+
 struct ConfigResult {
   size_t index = 0;
   std::string id;
@@ -59,6 +78,8 @@ struct ConfigResult {
   std::optional<image::ImageMetrics> indirect;  // when both graphs have an `indirect` output
   std::string reference_key;
   bool reference_cache_hit = false;
+  // Like with like, for graphs that declare their indirect light ("indirect" in the graph file).
+  std::optional<SameBounceResult> same_bounce;
   // Relative to the output folder.
   std::string image_png, reference_png, heat_map_png;
   double wall_seconds = 0.0;

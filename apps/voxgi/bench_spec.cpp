@@ -369,23 +369,59 @@ class BenchParser {
     ref.loc = value.loc();
     if (!value.is_object()) {
       error(value.loc(), "reference",
-            std::string("expected an object {\"graph\", \"frames\", \"set\"}, found ") +
+            std::string("expected an object {\"graph\", \"frames\", \"set\"} or {\"image\", "
+                        "\"indirect\"}, found ") +
                 graph::json::kind_name(value.kind()));
       return;
     }
-    check_keys(value, "reference", {"graph", "frames", "set"});
+    check_keys(value, "reference", {"graph", "frames", "set", "image", "indirect"});
+    const Value* image = value.find("image");
+    if (image) parse_reference_image(*image, "reference.image", ref.image);
+    if (const Value* indirect = value.find("indirect")) {
+      parse_reference_image(*indirect, "reference.indirect", ref.indirect);
+      if (!image) {
+        error(indirect->loc(), "reference.indirect",
+              "an indirect image needs the full one beside it in \"image\"");
+      }
+    }
     if (const Value* file = value.find("graph")) {
       ref.file_as_written = string_of(*file, "reference.graph");
       if (!ref.file_as_written.empty()) ref.file = existing_file(*file, "reference.graph");
-    } else {
-      error(value.loc(), "reference.graph", "missing (required)");
+    } else if (!image) {
+      error(value.loc(), "reference.graph",
+            "missing (required unless the reference is an image file: \"image\")");
     }
     if (const Value* frames = value.find("frames")) {
       ref.frames = integer_of(*frames, "reference.frames", 1, 1000000);
-    } else {
+    } else if (value.find("graph")) {
       error(value.loc(), "reference.frames", "missing (required)");
     }
     if (const Value* set = value.find("set")) ref.set = settings_of(*set, "reference.set");
+    if (image) {
+      size_t views = 0;
+      for (const BenchScene& scene : spec.scenes) views += scene.cameras.size();
+      if (views > 1 || spec.resolutions.size() > 1) {
+        error(image->loc(), "reference.image",
+              "an image reference shows one scene, camera and resolution, but the bench has " +
+                  std::to_string(views) + " views and " + std::to_string(spec.resolutions.size()) +
+                  " resolutions");
+      }
+    }
+  }
+
+  // A linear OpenEXR image beside the bench file (or in the source tree).
+  void parse_reference_image(const Value& value, const std::string& field,
+                             BenchReferenceImage& image) {
+    image.loc = value.loc();
+    image.file_as_written = string_of(value, field);
+    if (image.file_as_written.empty()) return;
+    if (fs::path(image.file_as_written).extension() != ".exr") {
+      error(value.loc(), field,
+            "'" + image.file_as_written +
+                "': expected a linear OpenEXR image (.exr), the same resolution as the bench");
+      return;
+    }
+    image.file = existing_file(value, field);
   }
 
   fs::path file_;

@@ -37,12 +37,27 @@ struct BenchGraph {
   graph::SourceLoc loc;
 };
 
+// A reference image given as a file (rendered by any offline renderer), relative to the bench
+// file: "reference": {"image": "x.exr", "indirect": "y.exr"}.
+struct BenchReferenceImage {
+  std::filesystem::path file;  // resolved; empty when not given
+  std::string file_as_written;
+  graph::SourceLoc loc;
+};
+
+// The reference: rendered by a path tracer graph, or read from image files. With both, the
+// images are the reference and the graph renders only the same-bounce references.
 struct BenchReference {
-  std::filesystem::path file;  // resolved graph file
+  std::filesystem::path file;  // resolved graph file; empty for an image-only reference
   std::string file_as_written;
   uint32_t frames = 1;  // progressive: samples = frames × the graph's samples per frame
   std::map<std::string, std::string> set;
   graph::SourceLoc loc;
+  BenchReferenceImage image;     // "image": the full linear image
+  BenchReferenceImage indirect;  // "indirect": its indirect light (optional, with "image")
+
+  bool has_graph() const { return !file_as_written.empty(); }
+  bool is_image() const { return !image.file_as_written.empty(); }
 };
 
 struct BenchSpec {

@@ -167,13 +167,26 @@ std::vector<double> linear_ticks(double lo, double hi) {
 }
 
 std::string metric_name(ErrorMetric metric) {
-  return metric == ErrorMetric::RelMse ? "relMSE (full image)" : "relMSE (indirect)";
+  switch (metric) {
+    case ErrorMetric::RelMse:
+      return "relMSE (full image)";
+    case ErrorMetric::IndirectRelMse:
+      return "relMSE (indirect)";
+    case ErrorMetric::SameBounceIndirectRelMse:
+      return "relMSE (indirect, same-bounce reference)";
+  }
+  return {};
 }
 
 std::optional<double> metric_of(const ConfigResult& r, ErrorMetric metric) {
-  const std::optional<image::ImageMetrics>& m = metric == ErrorMetric::RelMse ? r.full : r.indirect;
-  if (!m) return std::nullopt;
-  return m->rel_mse;
+  const std::optional<image::ImageMetrics>* m = &r.full;
+  if (metric == ErrorMetric::IndirectRelMse) m = &r.indirect;
+  if (metric == ErrorMetric::SameBounceIndirectRelMse) {
+    if (!r.same_bounce) return std::nullopt;
+    m = &r.same_bounce->indirect;
+  }
+  if (!*m) return std::nullopt;
+  return (*m)->rel_mse;
 }
 
 }  // namespace

@@ -9,8 +9,9 @@
 
 namespace voxgi::cli {
 
-// Which error a chart plots.
-enum class ErrorMetric { RelMse, IndirectRelMse };
+// Which error a chart plots: relMSE of the linear image or of `indirect` against the reference,
+// or of `indirect` against the same-bounce reference (the approximation error alone).
+enum class ErrorMetric { RelMse, IndirectRelMse, SameBounceIndirectRelMse };
 
 // One point per configuration with that metric: x the median GPU time (whiskers p10..p90),
 // y the error on a log axis; one colour per technique and its Pareto front (no other point of

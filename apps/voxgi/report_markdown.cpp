@@ -62,6 +62,32 @@ std::string image_tag(const std::string& src, const std::string& alt, uint32_t w
   return "<img src=\"" + src + "\" alt=\"" + alt + "\" width=\"" + std::to_string(shown) + "\">";
 }
 
+std::string optional_cell(const std::optional<double>& value) {
+  return value ? report_number(*value) : "—";
+}
+
+// The indirect light of graphs that declare their bounces: against the same-bounce reference,
+// against the full reference, and what the full reference has beyond the same-bounce one.
+void write_like_with_like_table(std::ostringstream& md, const Group& group) {
+  md << "\n### Indirect light, like with like\n\n";
+  md << "| id | technique | settings | bounces, BRDF | same-bounce bias | same-bounce relMSE | "
+        "same-bounce FLIP | full bias | full relMSE | full FLIP | missing |\n";
+  md << "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const ConfigResult* r : group.results) {
+    if (!r->same_bounce) continue;
+    const SameBounceResult& s = *r->same_bounce;
+    md << "| " << r->id << " | " << cell(r->technique) << " | " << cell(settings_of(*r)) << " | "
+       << s.bounces << ", " << s.brdf << " | "
+       << metric_cell(s.indirect, &image::ImageMetrics::luminance_bias) << " | "
+       << metric_cell(s.indirect, &image::ImageMetrics::rel_mse) << " | "
+       << metric_cell(s.indirect, &image::ImageMetrics::hdr_flip) << " | "
+       << metric_cell(s.full_indirect, &image::ImageMetrics::luminance_bias) << " | "
+       << metric_cell(s.full_indirect, &image::ImageMetrics::rel_mse) << " | "
+       << metric_cell(s.full_indirect, &image::ImageMetrics::hdr_flip) << " | "
+       << optional_cell(s.missing_fraction) << " |\n";
+  }
+}
+
 }  // namespace
 
 std::string report_number(double value) {
@@ -77,8 +103,12 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
   md << "# Bench: " << results.name << "\n\n";
   md << "- bench file: `" << results.bench_file << "`\n";
   md << "- device: " << results.device << "\n";
-  md << "- reference: `" << results.reference_graph << "`, " << results.reference_frames
-     << " frames\n";
+  if (results.reference_frames == 0) {
+    md << "- reference: image `" << results.reference_graph << "`\n";
+  } else {
+    md << "- reference: `" << results.reference_graph << "`, " << results.reference_frames
+       << " frames\n";
+  }
   md << "- configurations: " << results.results.size() << " of " << results.configurations_total;
   if (!results.shards.empty()) {
     md << " (merged from shards";
@@ -94,8 +124,13 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
   md << "\nGPU times come from timestamps around each pass, over the measured frames after the "
         "warm-up. Errors compare the linear image (and the `indirect` output, when both the "
         "graph and the reference have one) with the reference: relMSE is the mean of "
-        "(a - b)^2 / (b^2 + 0.01), SSIM is on compressed luminance, bias is the relative "
-        "difference of mean luminance (negative: too dark).\n\n";
+        "(a - b)^2 / (b^2 + 0.01), SSIM is on compressed luminance, FLIP is the mean HDR-FLIP "
+        "(0: indistinguishable, 1: green against blue), bias is the relative difference of mean "
+        "luminance (negative: too dark). Graphs that declare the bounces of their indirect light "
+        "are also compared like with like: their `indirect` against the path tracer limited to "
+        "the same bounces and BRDF terms (the approximation error), against the full reference "
+        "(what a user sees), and the part of the full reference's indirect light the technique "
+        "leaves out by design (missing = (full - same-bounce) / full mean luminance).\n\n";
 
   const std::filesystem::path charts = dir / "charts";
   std::filesystem::create_directories(charts);
@@ -118,13 +153,24 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
       md << "![Indirect error against GPU time](charts/" << stem
          << "-indirect-error-vs-time.svg)\n\n";
     }
+    const bool any_same_bounce = std::any_of(
+        group.results.begin(), group.results.end(),
+        [](const ConfigResult* r) { return r->same_bounce && r->same_bounce->indirect; });
+    if (any_same_bounce) {
+      write_file_atomically(
+          charts / (stem + "-same-bounce-error-vs-time.svg"),
+          error_vs_time_svg(group.results, ErrorMetric::SameBounceIndirectRelMse,
+                            "Indirect error against the same-bounce reference: " + group.title()));
+      md << "![Indirect error against the same-bounce reference](charts/" << stem
+         << "-same-bounce-error-vs-time.svg)\n\n";
+    }
     write_file_atomically(charts / (stem + "-pass-times.svg"),
                           pass_time_bars_svg(group.results, "GPU time per pass: " + group.title()));
     md << "![GPU time per pass](charts/" << stem << "-pass-times.svg)\n\n";
 
-    md << "| id | technique | settings | GPU ms | p10–p90 | relMSE | RMSE | SSIM | bias | "
+    md << "| id | technique | settings | GPU ms | p10–p90 | relMSE | RMSE | SSIM | FLIP | bias | "
           "indirect relMSE | non-finite |\n";
-    md << "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    md << "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const ConfigResult* r : group.results) {
       const Spread& t = r->times.gpu_total_ms;
       md << "| " << r->id << " | " << cell(r->technique) << " | " << cell(settings_of(*r)) << " | "
@@ -132,9 +178,14 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
          << " | " << metric_cell(r->full, &image::ImageMetrics::rel_mse) << " | "
          << metric_cell(r->full, &image::ImageMetrics::rmse) << " | "
          << metric_cell(r->full, &image::ImageMetrics::ssim_luminance) << " | "
+         << metric_cell(r->full, &image::ImageMetrics::hdr_flip) << " | "
          << metric_cell(r->full, &image::ImageMetrics::luminance_bias) << " | "
          << metric_cell(r->indirect, &image::ImageMetrics::rel_mse) << " | "
          << (r->full ? std::to_string(r->full->non_finite_pixels) : "—") << " |\n";
+    }
+    if (std::any_of(group.results.begin(), group.results.end(),
+                    [](const ConfigResult* r) { return r->same_bounce.has_value(); })) {
+      write_like_with_like_table(md, group);
     }
     md << "\n### Images\n\nReference, image and per-pixel relative error "
           "![heat map scale](charts/heat-scale.svg)\n\n";

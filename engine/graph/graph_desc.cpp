@@ -79,6 +79,28 @@ class DescParser {
     return f;
   }
 
+  void parse_indirect(const Value& v, GraphDesc& desc) {
+    if (!expect(v, Value::Kind::Object, {}, "indirect", "an object {\"bounces\", \"brdf\"}"))
+      return;
+    check_keys(v, keys({"bounces", "brdf", "doc"}), {}, "indirect.");
+    IndirectDesc& indirect = desc.indirect;
+    indirect.present = true;
+    indirect.loc = v.loc();
+    if (const Value* b = v.find("bounces")) {
+      indirect.bounces = expr_field(*b, "indirect", "bounces");
+    } else {
+      diags_.error(v.loc(), {}, "indirect.bounces", "missing (required)");
+    }
+    if (const Value* brdf = v.find("brdf")) {
+      indirect.brdf_loc = brdf->loc();
+      if (!brdf->is_string() || (brdf->as_string() != "diffuse" && brdf->as_string() != "full")) {
+        diags_.error(brdf->loc(), {}, "indirect.brdf", "expected \"diffuse\" or \"full\"");
+      } else {
+        indirect.brdf = brdf->as_string();
+      }
+    }
+  }
+
   void parse_parameters(const Value& v, GraphDesc& desc) {
     if (!expect(v, Value::Kind::Object, {}, "parameters", "an object")) return;
     for (const Member& m : v.members()) {
@@ -258,9 +280,10 @@ GraphDesc parse_graph(std::string_view text, std::string file_name) {
                     json::kind_name(root.kind()));
     diags.throw_if_any();
   }
-  parser.check_keys(root,
-                    keys({"name", "doc", "parameters", "resources", "passes", "outputs", "output"}),
-                    {}, {});
+  parser.check_keys(
+      root,
+      keys({"name", "doc", "parameters", "indirect", "resources", "passes", "outputs", "output"}),
+      {}, {});
   if (const Value* n = root.find("name")) {
     if (parser.expect(*n, Value::Kind::String, {}, "name", "a string")) desc.name = n->as_string();
   }
@@ -268,6 +291,7 @@ GraphDesc parse_graph(std::string_view text, std::string file_name) {
     if (parser.expect(*d, Value::Kind::String, {}, "doc", "a string")) desc.doc = d->as_string();
   }
   if (const Value* p = root.find("parameters")) parser.parse_parameters(*p, desc);
+  if (const Value* i = root.find("indirect")) parser.parse_indirect(*i, desc);
   if (const Value* r = root.find("resources")) {
     if (parser.expect(*r, Value::Kind::Object, {}, "resources", "an object")) {
       for (const Member& m : r->members()) parser.parse_resource(m, desc);

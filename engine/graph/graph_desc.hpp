@@ -80,6 +80,20 @@ struct OutputDesc {
   SourceLoc loc;
 };
 
+// What a GI graph's `indirect` output computes, so that `voxgi bench` can compare it with a path
+// tracer limited to the same light transport. "indirect": {"bounces": 1, "brdf": "diffuse"}.
+struct IndirectDesc {
+  bool present = false;
+  // Bounces of indirect light, a number or an expression over graph parameters
+  // ("${dvs.bounces} + 1"), evaluated after overrides.
+  ExprField bounces;
+  // Which BRDF terms the indirect light models: "diffuse" (Lambertian of the base colour
+  // only) or "full".
+  std::string brdf = "full";
+  SourceLoc brdf_loc;
+  SourceLoc loc;
+};
+
 struct GraphDesc {
   std::string file;
   std::string name;
@@ -88,6 +102,7 @@ struct GraphDesc {
   std::vector<ResourceDesc> resources;
   std::vector<PassDesc> passes;  // in file order
   std::vector<OutputDesc> outputs;
+  IndirectDesc indirect;
 
   const ResourceDesc* find_resource(std::string_view name) const;
   // The pass families named by pass types "family.pass", sorted, each once.

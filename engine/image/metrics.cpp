@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/image/flip.hpp"
+
 namespace voxgi::image {
 namespace {
 
@@ -77,6 +79,18 @@ double luminance(const float* rgba) {
   return 0.2126 * rgba[0] + 0.7152 * rgba[1] + 0.0722 * rgba[2];
 }
 
+double mean_luminance(const ImageRGBA32F& image) {
+  double sum = 0.0;
+  size_t count = 0;
+  for (size_t i = 0; i + 3 < image.pixels.size(); i += 4) {
+    const float* p = image.pixels.data() + i;
+    if (!finite_pixel(p)) continue;
+    sum += luminance(p);
+    ++count;
+  }
+  return count ? sum / static_cast<double>(count) : 0.0;
+}
+
 ImageMetrics compare_images(const ImageRGBA32F& image, const ImageRGBA32F& reference) {
   if (image.width == 0 || image.height == 0) {
     throw std::invalid_argument("compare_images: the image is empty");
@@ -123,6 +137,7 @@ ImageMetrics compare_images(const ImageRGBA32F& image, const ImageRGBA32F& refer
             : 0.0;
   }
   m.ssim_luminance = ssim_of(lum_a, lum_b, image.width, image.height);
+  m.hdr_flip = hdr_flip(image, reference).mean;
   return m;
 }
 

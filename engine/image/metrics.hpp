@@ -19,6 +19,10 @@ struct ImageMetrics {
   // HDR values have a fixed dynamic range; 11×11 Gaussian windows (σ = 1.5), C1 = 0.01²,
   // C2 = 0.03². 1 = structurally identical.
   double ssim_luminance = 1.0;
+  // Mean HDR-FLIP (engine/image/flip.hpp): perceived difference after tone mapping over the
+  // reference's exposure range, per pixel in [0, 1], 0 = indistinguishable. Non-finite
+  // components enter it as 0.
+  double hdr_flip = 0.0;
   double mean_luminance = 0.0;            // of the image under test
   double mean_luminance_reference = 0.0;  // of the reference
   // (mean_luminance - mean_luminance_reference) / mean_luminance_reference: negative when
@@ -33,5 +37,7 @@ struct ImageMetrics {
 ImageMetrics compare_images(const ImageRGBA32F& image, const ImageRGBA32F& reference);
 
 double luminance(const float* rgba);
+// Mean luminance over the pixels whose RGB are finite; 0 for an empty image.
+double mean_luminance(const ImageRGBA32F& image);
 
 }  // namespace voxgi::image

@@ -2,6 +2,7 @@
 // column and field, a non-zero exit, and no rendering (the checks run before a device opens).
 // Also `voxgi bench bvh`, which needs no device either.
 
+#include "engine/image/image.hpp"
 #include "tests/apps/voxgi_cli_fixture.hpp"
 
 namespace voxgi::test {
@@ -109,6 +110,79 @@ TEST_F(VoxgiBenchErrors, CheckListsTheConfigurationsAndRendersNothing) {
                              "c001  default ambient.radiance=0.2"}));
   EXPECT_FALSE(contains(r.err, "voxgi: device:"));
   EXPECT_FALSE(std::filesystem::exists(dir_ / "never"));
+}
+
+// Reference images from another renderer: a missing, unreadable, wrongly sized or misnamed
+// file is one located message before any device opens.
+TEST_F(VoxgiBenchErrors, BadReferenceImagesNameTheFileAndField) {
+  image::write_exr(dir_ / "ref64.exr", image::ImageRGBA32F(64, 64), image::ExrPixelType::Float);
+  image::write_exr(dir_ / "ref32.exr", image::ImageRGBA32F(32, 32), image::ExrPixelType::Float);
+  write_text(dir_ / "broken.exr", "not an image");
+  const auto bench_with = [&](const std::string& reference) {
+    const std::string text =
+        std::string("{\n  \"scenes\": [\"cornell\"],\n") + "  \"resolution\": [64, 64],\n" +
+        "  \"graphs\": [\"graphs/default.json\"],\n" + "  \"reference\": " + reference + "\n}\n";
+    return std::make_pair(text, bench_text(text));
+  };
+  struct Case {
+    std::string reference, at;
+    std::vector<std::string> parts;
+  };
+  const std::vector<Case> cases = {
+      {R"({ "image": "ref32.exr" })",
+       "\"ref32.exr\"",
+       {"field 'reference.image': 'ref32.exr' is 32x32 but configuration c000 renders 64x64"}},
+      {R"({ "image": "ref64.exr", "indirect": "ref32.exr" })",
+       "\"ref32.exr\"",
+       {"field 'reference.indirect': 'ref32.exr' is 32x32 but the image 'ref64.exr' is 64x64"}},
+      {R"({ "image": "nope.exr" })",
+       "\"nope.exr\"",
+       {"field 'reference.image': file 'nope.exr' not found"}},
+      {R"({ "image": "broken.exr" })",
+       "\"broken.exr\"",
+       {"field 'reference.image': cannot read 'broken.exr'"}},
+      {R"({ "image": "ref64.png" })",
+       "\"ref64.png\"",
+       {"field 'reference.image': 'ref64.png': expected a linear OpenEXR image (.exr)"}},
+      {R"({ "indirect": "ref64.exr" })",
+       "\"ref64.exr\"",
+       {"field 'reference.indirect': an indirect image needs the full one beside it"}},
+      {R"({ "frames": 2 })",
+       "{ \"frames\"",
+       {"field 'reference.graph': missing (required unless the reference is an image file"}},
+  };
+  for (const Case& c : cases) {
+    const auto [text, r] = bench_with(c.reference);
+    SCOPED_TRACE(c.reference);
+    EXPECT_TRUE(exited_with(r, 1));
+    const size_t column = text.find(c.at) - text.rfind('\n', text.find(c.at));
+    std::vector<std::string> parts = c.parts;
+    parts.push_back(where(text, c.at) + std::to_string(column) + ": error: ");
+    EXPECT_TRUE(stderr_has(r, parts));
+    EXPECT_FALSE(contains(r.err, "voxgi: device:"));
+  }
+}
+
+TEST_F(VoxgiBenchErrors, CheckListsTheSameBounceReferences) {
+  write_text(dir_ / "gi.json", std::string(R"({ "scenes": ["cornell"], "resolution": [32, 32],
+    "graphs": [{ "graph": "graphs/vct.json", "set": { "voxel.resolution": 32, "voxel.levels": 1 } },
+               { "graph": "graphs/dvs.json", "sweep": { "dvs.bounces": [0, 3] } },
+               "graphs/default.json"],
+    "reference": { "graph": "graphs/reference.json", "frames": 2,
+                   "set": { "path_tracer.deferred_layers": true } } })"));
+  const ProcessResult r = voxgi({"bench", "gi.json", "--check"});
+  ASSERT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(stdout_has(
+      r, {"c000  vct  on cornell / default / 32x32  (reference ",
+          "indirect: 1 bounce, diffuse; same-bounce reference (path_tracer.lambert=true "
+          "path_tracer.max_depth=2) ",
+          "c001  dvs dvs.bounces=0", "c002  dvs dvs.bounces=3",
+          "indirect: 4 bounces, diffuse; same-bounce reference (path_tracer.lambert=true "
+          "path_tracer.max_depth=5) "}));
+  // The default graph declares nothing: no same-bounce reference on its line.
+  const size_t line = r.out.find("c003  default");
+  ASSERT_NE(line, std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("indirect:", line), std::string::npos) << r.out;
 }
 
 TEST_F(VoxgiBenchErrors, TheShippedBenchChecksOut) {

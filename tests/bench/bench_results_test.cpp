@@ -1,15 +1,19 @@
 // Bench statistics, results files and charts on values worked out by hand.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
 #include "apps/voxgi/bench_results.hpp"
 #include "apps/voxgi/report_charts.hpp"
+#include "apps/voxgi/report_markdown.hpp"
 
 namespace voxgi::cli {
 namespace {
@@ -98,8 +102,27 @@ ConfigResult sample_result(size_t index, const std::string& technique, double ms
   m.mean_luminance = 0.19;
   m.mean_luminance_reference = 0.2;
   m.compared_pixels = 64 * 48;
+  m.hdr_flip = 0.25;
   r.full = m;
   if (index % 2) r.indirect = m;
+  if (index == 1) {
+    SameBounceResult same;
+    same.bounces = 2;
+    same.brdf = "diffuse";
+    same.reference_set = {{"path_tracer.max_depth", "3"}, {"path_tracer.lambert", "true"}};
+    same.reference_key = "fedcba9876543210";
+    same.indirect = m;
+    same.full_indirect = m;
+    same.full_reference_key = "0123456789abcdef";
+    same.missing_fraction = 0.125;
+    r.same_bounce = same;
+  }
+  if (index == 2) {  // declared, but no same-bounce reference (an image-only reference)
+    SameBounceResult same;
+    same.bounces = 1;
+    same.brdf = "full";
+    r.same_bounce = same;
+  }
   r.reference_key = "0123456789abcdef";
   r.image_png = "images/" + r.id + ".png";
   r.reference_png = "images/reference-0123456789abcdef.png";
@@ -134,7 +157,26 @@ TEST(BenchResults, JsonRoundTripKeepsEveryField) {
   EXPECT_FALSE(back.results[0].indirect.has_value());
   ASSERT_TRUE(back.results[1].indirect.has_value());
   EXPECT_DOUBLE_EQ(back.results[1].indirect->rel_mse, 0.1);
+  EXPECT_DOUBLE_EQ(back.results[1].full->hdr_flip, 0.25);
+  EXPECT_FALSE(back.results[0].same_bounce.has_value());
+  ASSERT_TRUE(back.results[1].same_bounce.has_value());
+  EXPECT_EQ(back.results[1].same_bounce->reference_set.at("path_tracer.max_depth"), "3");
+  EXPECT_DOUBLE_EQ(*back.results[1].same_bounce->missing_fraction, 0.125);
+  ASSERT_TRUE(back.results[2].same_bounce.has_value());
+  EXPECT_FALSE(back.results[2].same_bounce->indirect.has_value());
+  EXPECT_FALSE(back.results[2].same_bounce->missing_fraction.has_value());
   EXPECT_EQ(back.missing(), std::vector<size_t>{3});
+}
+
+TEST(BenchResults, ResultsWrittenBeforeFlipAndSameBounceStillRead) {
+  nlohmann::json doc = to_json(sample_results());
+  for (nlohmann::json& item : doc["results"]) {
+    item.erase("same_bounce");
+    item["metrics"]["full"].erase("hdr_flip");
+  }
+  const BenchResults back = results_from_json(doc, "old/results.json");
+  EXPECT_FALSE(back.results[1].same_bounce.has_value());
+  EXPECT_DOUBLE_EQ(back.results[1].full->hdr_flip, 0.0);
 }
 
 TEST(BenchResults, ReadingAWrongFileNamesTheField) {
@@ -171,6 +213,48 @@ TEST(BenchResults, CsvHasOneQuotedRowPerConfiguration) {
     return n;
   };
   for (const std::string& row : rows) EXPECT_EQ(fields(row), fields(rows[0])) << row;
+  // The like-with-like columns come after the older ones, which keep their positions.
+  EXPECT_NE(rows[0].find(",reference_key,reference_cache_hit,hdr_flip,indirect_hdr_flip,"
+                         "indirect_bounces,indirect_brdf,same_bounce_rel_mse,"),
+            std::string::npos)
+      << rows[0];
+  EXPECT_NE(rows[0].find(",full_indirect_rel_mse,"), std::string::npos);
+  EXPECT_NE(rows[0].find(",missing_indirect_fraction,same_bounce_reference_key"),
+            std::string::npos);
+  EXPECT_NE(rows[2].find(",2,diffuse,0.1,0.9,0.25,-0.05,0.1,0.9,0.25,-0.05,0.125,fedcba9876543210"),
+            std::string::npos)
+      << rows[2];
+}
+
+TEST(BenchReport, LikeWithLikeTableAndChart) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("voxgi-bench-report-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  write_report(dir, sample_results());
+  std::ifstream in(dir / "report.md");
+  const std::string report{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  EXPECT_NE(report.find("| SSIM | FLIP | bias |"), std::string::npos);
+  const size_t table = report.find("### Indirect light, like with like");
+  ASSERT_NE(table, std::string::npos) << report;
+  EXPECT_NE(report.find("| same-bounce bias | same-bounce relMSE | same-bounce FLIP | full bias | "
+                        "full relMSE | full FLIP | missing |",
+                        table),
+            std::string::npos);
+  // c001 has both references, c002 only its declaration, c000 no declaration.
+  EXPECT_NE(report.find("| c001 | vct, \"fast\" | cones=1 | 2, diffuse | -0.05 | 0.1 | 0.25 | "
+                        "-0.05 | 0.1 | 0.25 | 0.125 |",
+                        table),
+            std::string::npos)
+      << report.substr(table);
+  EXPECT_NE(report.find("| c002 | vct, \"fast\" | cones=2 | 1, full | — | — | — | — | — | — | — |",
+                        table),
+            std::string::npos)
+      << report.substr(table);
+  EXPECT_EQ(report.find("| c000 | ambient | cones=0 | ", table), std::string::npos);
+  EXPECT_TRUE(
+      std::filesystem::is_regular_file(dir / "charts" / "group0-same-bounce-error-vs-time.svg"));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(BenchCharts, ErrorAgainstTimeHasAPointPerConfigurationAndFronts) {

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "engine/image/image.hpp"
 #include "tests/apps/voxgi_cli_fixture.hpp"
 
 namespace voxgi::test {
@@ -128,8 +129,9 @@ TEST_F(VoxgiBench, TinyBenchWritesEveryOutputAndTheReportAgreesWithResults) {
     ASSERT_NE(at, std::string::npos) << report;
     const std::vector<std::string> cells =
         split_cells(report.substr(at, report.find('\n', at) - at));
-    // id | technique | settings | GPU ms | p10–p90 | relMSE | RMSE | SSIM | bias | indirect | nf
-    ASSERT_EQ(cells.size(), 11u) << report.substr(at, 200);
+    // id | technique | settings | GPU ms | p10–p90 | relMSE | RMSE | SSIM | FLIP | bias |
+    // indirect | nf
+    ASSERT_EQ(cells.size(), 12u) << report.substr(at, 200);
     EXPECT_EQ(cells[1], "ambient");
     EXPECT_NE(cells[2].find("ambient.radiance=" +
                             item["overrides"]["ambient.radiance"].get<std::string>()),
@@ -143,9 +145,12 @@ TEST_F(VoxgiBench, TinyBenchWritesEveryOutputAndTheReportAgreesWithResults) {
     EXPECT_TRUE(same_number(cells[5], full["rel_mse"]));
     EXPECT_TRUE(same_number(cells[6], full["rmse"]));
     EXPECT_TRUE(same_number(cells[7], full["ssim_luminance"]));
-    EXPECT_TRUE(same_number(cells[8], full["luminance_bias"]));
-    EXPECT_TRUE(same_number(cells[9], item["metrics"]["indirect"]["rel_mse"]));
-    EXPECT_EQ(cells[10], "0");
+    EXPECT_TRUE(same_number(cells[8], full["hdr_flip"]));
+    EXPECT_GT(full["hdr_flip"].get<double>(), 0.0);
+    EXPECT_TRUE(same_number(cells[9], full["luminance_bias"]));
+    EXPECT_TRUE(same_number(cells[10], item["metrics"]["indirect"]["rel_mse"]));
+    EXPECT_EQ(cells[11], "0");
+    EXPECT_TRUE(item["same_bounce"].is_null()) << "the default graph declares no bounces";
     EXPECT_NE(report.find("src=\"" + item["images"]["heat_map"].get<std::string>() + "\""),
               std::string::npos);
     std::ostringstream csv_row;
@@ -217,6 +222,103 @@ TEST_F(VoxgiBench, ShardsAndMergeEqualTheUnshardedRun) {
   const ProcessResult mixed = voxgi({"bench", "merge", "mixed", "shard2", "other"});
   EXPECT_TRUE(exited_with(mixed, 1));
   EXPECT_TRUE(stderr_has(mixed, {"'other' comes from a different bench file"}));
+}
+
+// vct (one bounce) and dvs (K + 1 bounces) against the path tracer limited to as many bounces
+// and diffuse-only materials, and against the full reference split as they split; then the same
+// bench against that reference given as image files.
+TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
+  if (!fs::exists(fs::path(VOXGI_SOURCE_DIR) / "graphs" / "reference.json")) {
+    GTEST_SKIP() << "needs the reference path tracer graph";
+  }
+  const std::string graphs = R"(
+  "scenes": ["cornell"], "resolution": [64, 64], "warmup_frames": 1, "frames": 2,
+  "graphs": [
+    { "graph": "graphs/vct.json", "set": { "voxel.resolution": 32, "voxel.levels": 1 } },
+    { "graph": "graphs/dvs.json", "set": { "voxel.resolution": 32 },
+      "sweep": { "dvs.bounces": [0, 1] } } ],)";
+  write_text(dir_ / "gi.json", "{" + graphs + R"(
+  "reference": { "graph": "graphs/reference.json", "frames": 4,
+                 "set": { "path_tracer.deferred_layers": true } } })");
+  ProcessOptions options;
+  options.timeout = std::chrono::milliseconds(300000);
+  const ProcessResult r = voxgi(
+      {"bench", "gi.json", "--out", "gi", "--reference-cache", "cache", "--validation"}, options);
+  ASSERT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(
+      stderr_has(r, {"same-bounce reference (path_tracer.lambert=true "
+                     "path_tracer.max_depth=2) for cornell / default / 64x64: not cached",
+                     "same-bounce reference (path_tracer.lambert=true "
+                     "path_tracer.max_depth=3) for cornell / default / 64x64: not cached"}));
+  const json results = read_json(dir_ / "gi" / "results.json");
+  ASSERT_EQ(results["results"].size(), 3u);
+  const std::string report = read_text(dir_ / "gi" / "report.md");
+  const size_t table = report.find("### Indirect light, like with like");
+  ASSERT_NE(table, std::string::npos) << report;
+  const uint32_t bounces[] = {1, 1, 2};
+  for (size_t i = 0; i < 3; ++i) {
+    const json& item = results["results"][i];
+    SCOPED_TRACE(item["label"].get<std::string>());
+    const json& same = item["same_bounce"];
+    ASSERT_TRUE(same.is_object());
+    EXPECT_EQ(same["bounces"], bounces[i]);
+    EXPECT_EQ(same["brdf"], "diffuse");
+    EXPECT_EQ(same["reference_set"]["path_tracer.max_depth"], std::to_string(bounces[i] + 1));
+    EXPECT_EQ(same["reference_set"]["path_tracer.lambert"], "true");
+    EXPECT_EQ(same["reference_set"]["path_tracer.deferred_layers"], "true");
+    // The bench's reference already splits as the techniques do: it is the full one.
+    EXPECT_EQ(same["full_reference_key"], item["reference_key"]);
+    EXPECT_EQ(same["full_indirect"], item["metrics"]["indirect"]);
+    ASSERT_TRUE(same["indirect"].is_object());
+    EXPECT_EQ(same["indirect"]["compared_pixels"], 64 * 64);
+    EXPECT_GT(same["indirect"]["hdr_flip"].get<double>(), 0.0);
+    const double missing = same["missing_fraction"].get<double>();
+    EXPECT_GT(missing, 0.0) << "further bounces and the full BRDF add light";
+    EXPECT_LT(missing, 1.0);
+    const size_t row = report.find("| " + item["id"].get<std::string>() + " |", table);
+    ASSERT_NE(row, std::string::npos);
+    const std::vector<std::string> cells =
+        split_cells(report.substr(row, report.find('\n', row) - row));
+    ASSERT_EQ(cells.size(), 11u);
+    EXPECT_EQ(cells[3], std::to_string(bounces[i]) + ", diffuse");
+    EXPECT_TRUE(same_number(cells[5], same["indirect"]["rel_mse"]));
+    EXPECT_TRUE(same_number(cells[10], missing));
+  }
+  const json& c0 = results["results"][0]["same_bounce"];
+  EXPECT_EQ(c0["reference_key"], results["results"][1]["same_bounce"]["reference_key"])
+      << "vct and dvs with no voxel bounce share their one-bounce reference";
+  EXPECT_NE(c0["reference_key"], results["results"][2]["same_bounce"]["reference_key"]);
+  EXPECT_LT(results["results"][2]["same_bounce"]["missing_fraction"].get<double>(),
+            c0["missing_fraction"].get<double>())
+      << "a second bounce leaves less out";
+  EXPECT_NE(read_text(dir_ / "gi" / "results.csv").find(",1,diffuse,"), std::string::npos);
+
+  // The same reference as image files (as another renderer would give it).
+  const fs::path entry = dir_ / "cache" / results["results"][0]["reference_key"].get<std::string>();
+  fs::copy_file(entry / "linear.exr", dir_ / "full.exr");
+  fs::copy_file(entry / "indirect.exr", dir_ / "indirect.exr");
+  write_text(dir_ / "image.json", "{" + graphs + R"(
+  "reference": { "image": "full.exr", "indirect": "indirect.exr",
+                 "graph": "graphs/reference.json", "frames": 4 } })");
+  const ProcessResult again =
+      voxgi({"bench", "image.json", "--out", "image", "--reference-cache", "cache"}, options);
+  ASSERT_TRUE(exited_with(again, 0));
+  EXPECT_FALSE(contains(again.err, "not cached")) << "the same-bounce references are cached";
+  const json from_image = read_json(dir_ / "image" / "results.json");
+  EXPECT_EQ(from_image["reference"]["graph"], "full.exr");
+  EXPECT_EQ(from_image["reference"]["frames"], 0);
+  EXPECT_NE(read_text(dir_ / "image" / "report.md").find("- reference: image `full.exr`"),
+            std::string::npos);
+  for (size_t i = 0; i < 3; ++i) {
+    const json& a = results["results"][i];
+    const json& b = from_image["results"][i];
+    EXPECT_NEAR(b["metrics"]["full"]["rel_mse"].get<double>(),
+                a["metrics"]["full"]["rel_mse"].get<double>(), 1e-9);
+    EXPECT_NEAR(b["same_bounce"]["missing_fraction"].get<double>(),
+                a["same_bounce"]["missing_fraction"].get<double>(), 1e-9);
+    EXPECT_EQ(b["same_bounce"]["full_reference_key"], b["reference_key"]);
+    EXPECT_TRUE(fs::is_regular_file(dir_ / "image" / b["images"]["reference"].get<std::string>()));
+  }
 }
 
 }  // namespace

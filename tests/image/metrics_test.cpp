@@ -32,6 +32,7 @@ TEST(ImageMetrics, IdenticalImagesHaveNoError) {
   EXPECT_DOUBLE_EQ(m.rel_mse, 0.0);
   EXPECT_NEAR(m.ssim_luminance, 1.0, 1e-12);
   EXPECT_DOUBLE_EQ(m.luminance_bias, 0.0);
+  EXPECT_DOUBLE_EQ(m.hdr_flip, 0.0);
   EXPECT_EQ(m.compared_pixels, 256u);
 }
 
@@ -62,6 +63,14 @@ TEST(ImageMetrics, TooDarkGivesNegativeBias) {
   EXPECT_NEAR(m.luminance_bias, -0.5, 1e-6);
 }
 
+TEST(ImageMetrics, MeanLuminanceLeavesNonFinitePixelsOut) {
+  ImageRGBA32F image = filled(2, 1, 1, 1, 1);
+  EXPECT_NEAR(mean_luminance(image), 1.0, 1e-12);
+  image.at(1, 0)[0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NEAR(mean_luminance(image), 1.0, 1e-12);
+  EXPECT_EQ(mean_luminance(ImageRGBA32F()), 0.0);
+}
+
 TEST(ImageMetrics, SsimOfAConstantShiftMatchesTheFormula) {
   // Constant images: variances and covariance vanish, so SSIM is the luminance term
   // (2 μa μb + C1) / (μa² + μb² + C1) on the compressed luminances y / (1 + y).
@@ -82,6 +91,8 @@ TEST(ImageMetrics, SsimDropsForNoiseButNotForIdenticalStructure) {
   }
   EXPECT_NEAR(compare_images(checker, checker).ssim_luminance, 1.0, 1e-12);
   EXPECT_LT(compare_images(noisy, checker).ssim_luminance, 0.5);
+  // HDR-FLIP sees the same difference (flip_test.cpp tests it on its own).
+  EXPECT_GT(compare_images(noisy, checker).hdr_flip, 0.1);
 }
 
 TEST(ImageMetrics, NonFinitePixelsAreCountedNotAveraged) {

@@ -1,0 +1,44 @@
+#pragma once
+// Like-with-like references for `voxgi bench`: a GI graph declares how many bounces of indirect
+// light its `indirect` output holds and which BRDF terms it models ("indirect" in the graph
+// file); its same-bounce reference is the bench's path tracer limited to that, with the
+// direct/indirect split of deferred lighting plus voxel GI (docs/reference.md).
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "engine/graph/graph_desc.hpp"
+
+namespace voxgi::cli {
+
+struct IndirectModel {
+  uint32_t bounces = 0;
+  bool diffuse_only = false;
+  std::string brdf() const { return diffuse_only ? "diffuse" : "full"; }
+};
+
+// The graph's declared indirect light with its bounce count evaluated over the graph
+// parameters after overrides (CompiledGraph::parameters); nullopt when the graph declares
+// none. Throws GraphError at the graph file's `indirect.bounces` when the expression fails or
+// is not an integer in [0, 64].
+std::optional<IndirectModel> indirect_model_of(const graph::GraphDesc& desc,
+                                               const std::map<std::string, double>& parameters);
+
+// The name of the reference graph's `reference.path_tracer` pass, or "" when it has none.
+std::string path_tracer_pass_of(const graph::GraphDesc& reference);
+
+// The reference overrides plus, on the path tracer pass: max_depth = bounces + 1 (the
+// deferred split counts emitters one reflection behind), deferred_layers = true, and
+// lambert = true for a diffuse-only technique.
+std::map<std::string, std::string> same_bounce_reference_set(
+    const std::map<std::string, std::string>& reference_set, const std::string& path_tracer_pass,
+    const IndirectModel& model);
+
+// What the full reference's indirect light has beyond the same-bounce reference's, as a
+// fraction of the full one's mean luminance: the part a technique cannot reach however well it
+// approximates what it models. 0 when the full reference's indirect is black.
+double missing_indirect_fraction(double full_mean_luminance, double same_bounce_mean_luminance);
+
+}  // namespace voxgi::cli

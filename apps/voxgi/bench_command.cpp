@@ -170,8 +170,9 @@ class BenchRun {
     const scene::Camera camera = camera_of(scene, config);
     const ReferenceImages& reference = reference_for(config, scene, camera, renderer, progress);
 
-    const graph::CompiledGraph compiled = catalog_.compile(
-        catalog_.graph(entry.file), scene, config.width, config.height, config.overrides);
+    const graph::CompiledGraph compiled =
+        catalog_.compile(catalog_.graph(entry.file), scene, config.width, config.height,
+                         config.overrides, &renderer.context());
     RenderRun run = renderer.render(compiled, catalog_.registry(), scene, camera,
                                     spec_.warmup_frames, spec_.frames);
 
@@ -226,7 +227,7 @@ class BenchRun {
     const auto start = Clock::now();
     const graph::CompiledGraph compiled =
         catalog_.compile(catalog_.graph(spec_.reference.file), scene, config.width, config.height,
-                         spec_.reference.set);
+                         spec_.reference.set, &renderer.context());
     const RenderRun run = renderer.render(
         compiled, catalog_.registry(), scene, camera, 0, frames, [&](uint32_t done) {
           progress.step("reference for " + where + ": frame " + std::to_string(done) + "/" +

@@ -62,6 +62,53 @@ TEST(CompilerCulling, WhenFalseCullsWithReason) {
   EXPECT_TRUE(with.culled.empty());
 }
 
+const std::string kDeviceChoice = kClear + R"(
+    { "name": "traced", "type": "test.blur", "when": "device.ray_query && scene.has_glossy", "in": { "src": "hdr" }, "out": { "dst": "spec" } },
+    { "name": "shade", "type": "test.shade", "in": { "src": "hdr", "extra": "spec" }, "out": { "color": "ldr" } })";
+const std::string kSpec = R"("spec": { "type": "image2d", "format": "rgba16f", "size": 8 },)";
+
+TEST(CompilerCulling, WhenReadsDeviceFeatures) {
+  CompileOptions options;
+  options.scene_features = {{"scene.has_glossy", 1}};
+  options.device_features = {{"device.ray_query", 1}, {"device.shader_int64", 1}};
+  options.device_name = "test gpu";
+  const CompiledGraph with = compile_graph(kSpec, kDeviceChoice, options);
+  EXPECT_EQ(schedule(with), (std::vector<std::string>{"clear", "traced", "shade"}));
+  EXPECT_TRUE(with.device_queried);
+  EXPECT_EQ(with.device_name, "test gpu");
+  EXPECT_DOUBLE_EQ(with.device_features.at("device.ray_query"), 1.0);
+  // Names the options leave out read as absent.
+  EXPECT_DOUBLE_EQ(with.device_features.at("device.ray_tracing_pipeline"), 0.0);
+  ASSERT_EQ(with.device_conditions.size(), 1u);
+  EXPECT_EQ(with.device_conditions[0].pass, "traced");
+  EXPECT_EQ(with.device_conditions[0].features, (std::vector<std::string>{"device.ray_query"}));
+  EXPECT_TRUE(with.device_conditions[0].value);
+
+  options.device_features = {{"device.ray_query", 0}};
+  const CompiledGraph without = compile_graph(kSpec, kDeviceChoice, options);
+  EXPECT_EQ(schedule(without), (std::vector<std::string>{"clear", "shade"}));
+  EXPECT_EQ(without.find_culled("traced")->reason,
+            "when 'device.ray_query && scene.has_glossy' is false for this scene and device "
+            "'test gpu'");
+  ASSERT_EQ(without.device_conditions.size(), 1u);
+  EXPECT_FALSE(without.device_conditions[0].value);
+}
+
+TEST(CompilerCulling, WithoutADeviceEveryDeviceFeatureIsAbsent) {
+  CompileOptions options;
+  options.scene_features = {{"scene.has_glossy", 1}};
+  const CompiledGraph g = compile_graph(kSpec, kDeviceChoice, options);
+  EXPECT_FALSE(g.device_queried);
+  EXPECT_EQ(schedule(g), (std::vector<std::string>{"clear", "shade"}));
+  EXPECT_EQ(g.find_culled("traced")->reason,
+            "when 'device.ray_query && scene.has_glossy' is false for this scene (compiled "
+            "without a device: device features read as absent)");
+  for (const auto& [name, value] : g.device_features) EXPECT_DOUBLE_EQ(value, 0.0) << name;
+  EXPECT_TRUE(g.device_features.count("device.conservative_rasterization"));
+  // A condition that does not read the device says nothing about it.
+  EXPECT_TRUE(compile_graph(kSpec, kClear + kShade, options).device_conditions.empty());
+}
+
 TEST(CompilerCulling, UnreachablePassesAreCulled) {
   const CompiledGraph g = compile_graph(
       R"("debug": { "type": "image2d", "format": "rgba16f", "size": 8 },)", kClear + kShade + R"(

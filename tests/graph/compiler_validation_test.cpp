@@ -297,6 +297,22 @@ TEST(CompilerValidation, UnknownSceneFeatureInWhen) {
       "mean 'scene.has_glossy'?)");
 }
 
+TEST(CompilerValidation, UnknownDeviceFeatureInWhenListsTheKnownOnes) {
+  const std::string error = single_error(graph(
+      kClear +
+      R"(    { "name": "shade", "type": "test.shade", "when": "device.ray_querry", "in": { "src": "hdr" }, "out": { "color": "ldr" } },
+)"));
+  EXPECT_EQ(error.rfind("graphs/test.json:10:55: error: pass 'shade' field 'when': in expression "
+                        "\"device.ray_querry\" at column 1: unknown device feature "
+                        "'device.ray_querry' (known: ",
+                        0),
+            0u)
+      << error;
+  EXPECT_NE(error.find("device.ray_query, device.ray_tracing_pipeline"), std::string::npos)
+      << error;
+  EXPECT_NE(error.find("(did you mean 'device.ray_query'?)"), std::string::npos) << error;
+}
+
 TEST(CompilerValidation, SameMipInTwoLayoutsInOnePass) {
   const std::string e = single_error(graph(
       kClear +

@@ -34,7 +34,7 @@ class GpuScene;
 namespace voxgi::graph {
 
 // Bumped whenever PassTypeInfo, Pass, PassContext or Registry change layout or meaning.
-inline constexpr uint32_t kPluginAbiVersion = 2;
+inline constexpr uint32_t kPluginAbiVersion = 3;
 
 enum class ParamType { Bool, Int, Float, Enum };
 // "bool", "int", "float" or "enum".
@@ -77,6 +77,10 @@ enum class Access {
   UniformRead,       // uniform buffer
   TransferRead,
   TransferWrite,
+  // Buffer of indirect arguments read by vkCmdDispatchIndirect or vkCmdDraw*Indirect (input
+  // slots of buffers only). It synchronises with the draw-indirect stage whatever the slot's
+  // stages say, since the command, not a shader, reads it.
+  IndirectRead,
 };
 
 // Shader stages a slot is used in (bit mask).

@@ -297,6 +297,56 @@ TEST(CompilerBarriers, PersistentResourcesTransitionAtFrameStart) {
   EXPECT_EQ(find_barrier(g, g.find_pass("accumulate")->barriers, "history"), nullptr);
 }
 
+// Indirect arguments written by a compute pass reach the dispatch through the draw-indirect
+// stage; the buffer gets the indirect usage on top of storage.
+TEST(CompilerBarriers, ComputeWrittenIndirectArguments) {
+  const CompiledGraph g = compile_graph(
+      R"("args": { "type": "buffer", "size": 64 },
+         "a": { "type": "image2d", "format": "rgba16f", "size": 8 },
+         "b": { "type": "image2d", "format": "rgba16f", "size": 8 },
+         "c": { "type": "image2d", "format": "rgba16f", "size": 8 },)",
+      R"({ "name": "fill", "type": "test.fill", "out": { "buf": "args" } },
+      { "name": "first", "type": "test.indirect_dispatch", "in": { "args": "args" }, "out": { "dst": "a" } },
+      { "name": "second", "type": "test.indirect_dispatch", "in": { "args": "args" }, "out": { "dst": "b" } },
+      { "name": "third", "type": "test.indirect_dispatch", "in": { "args": "args", "data": "args" }, "out": { "dst": "c" } },
+      { "name": "shade", "type": "test.shade", "in": { "src": "a", "extra": "b" }, "out": { "color": "hdr" } },
+      { "name": "shade2", "type": "test.shade", "in": { "src": "c", "extra": "hdr" }, "out": { "color": "ldr" } })");
+  EXPECT_EQ(schedule(g),
+            (std::vector<std::string>{"fill", "first", "second", "third", "shade", "shade2"}));
+  const Barrier* b = find_barrier(g, g.find_pass("first")->barriers, "args");
+  ASSERT_NE(b, nullptr);
+  EXPECT_TRUE(b->is_buffer);
+  EXPECT_EQ(b->src_stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  EXPECT_EQ(b->src_access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  EXPECT_EQ(b->dst_stages, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT);
+  EXPECT_EQ(b->dst_access, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+  // Already visible to indirect reads: the second reader needs no barrier.
+  EXPECT_EQ(find_barrier(g, g.find_pass("second")->barriers, "args"), nullptr);
+  // A shader reading the same arguments as storage needs the write made visible to it too.
+  const Barrier* storage = find_barrier(g, g.find_pass("third")->barriers, "args");
+  ASSERT_NE(storage, nullptr);
+  EXPECT_EQ(storage->src_access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  EXPECT_TRUE(storage->dst_access & VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  EXPECT_TRUE(storage->dst_stages & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  const CompiledResource& args = g.resources[static_cast<size_t>(g.find_resource("args"))];
+  EXPECT_TRUE(args.buffer_usage & VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+  EXPECT_TRUE(args.buffer_usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  EXPECT_EQ(access_name(Access::IndirectRead), "indirect");
+}
+
+// Indirect arguments come from buffers and are only read: other declarations are refused.
+TEST(CompilerBarriers, IndirectAccessIsForBufferInputsOnly) {
+  Registry r;
+  PassTypeInfo image_args;
+  image_args.type = "bad.image_args";
+  image_args.inputs = {test::slot("args", test::kImage2D, Access::IndirectRead, kStageCompute)};
+  EXPECT_THROW(r.add(image_args, [] { return nullptr; }), std::invalid_argument);
+  PassTypeInfo output_args;
+  output_args.type = "bad.output_args";
+  output_args.outputs = {test::slot("args", test::kBuffer, Access::IndirectRead, kStageCompute)};
+  EXPECT_THROW(r.add(output_args, [] { return nullptr; }), std::invalid_argument);
+}
+
 TEST(CompilerBarriers, FullBarriersMode) {
   CompileOptions options;
   options.full_barriers = true;

@@ -29,6 +29,7 @@ class ShaderCompiler;
 namespace voxgi::scene {
 struct Scene;
 class GpuScene;
+class GpuBvh;
 }  // namespace voxgi::scene
 
 namespace voxgi::graph {
@@ -195,6 +196,9 @@ class PassContext : public PassDeclaration {
   gpu::ShaderCompiler& shaders() const;
   const scene::Scene& scene() const;
   scene::GpuScene& gpu_scene() const;
+  // The scene's BVH, shared by every pass that traces rays (GpuScene::bvh): built on first use,
+  // refit when instances moved. Bind its buffers as docs/design.md describes.
+  const scene::GpuBvh& scene_bvh() const;
   const FrameInfo& frame() const;
 
   const BoundResource& resource(std::string_view slot) const;

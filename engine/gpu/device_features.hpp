@@ -1,6 +1,6 @@
 #pragma once
 // What the chosen device can do beyond the required baseline, and the names graph files use
-// for it in `when` conditions and sizes ("device.ray_query").
+// for it in `when` conditions ("device.ray_query").
 
 #include <cstdint>
 #include <map>

@@ -158,7 +158,8 @@ class Compiler {
     }
   }
 
-  // Scene features, device features and what decides them, for `when` and sizes alike.
+  // Scene and device features for `when` conditions. Sizes read no device features: a graph
+  // checked without a device would get other sizes than the one that runs.
   void add_features(ExpressionEnv& env) const {
     env.identifiers = options_.scene_features;
     for (const auto& [name, value] : graph_.device_features) env.identifiers[name] = value;
@@ -200,14 +201,13 @@ class Compiler {
     ExpressionEnv env;
     env.params = graph_.parameters;
     // Scene features let sizes follow the scene (e.g. shadow layers per light present).
-    add_features(env);
+    env.identifiers = options_.scene_features;
     env.identifiers["viewport"] = viewport;
     env.identifiers["viewport.width"] = static_cast<double>(options_.viewport_width);
     env.identifiers["viewport.height"] = static_cast<double>(options_.viewport_height);
     env.identifier_kind = "name";
     env.identifier_help =
-        "sizes may use viewport, viewport.width, viewport.height, scene and device features, "
-        "min(a, b), "
+        "sizes may use viewport, viewport.width, viewport.height, scene features, min(a, b), "
         "max(a, b) and ${parameters}";
     return env;
   }

@@ -313,6 +313,20 @@ TEST(CompilerValidation, UnknownDeviceFeatureInWhenListsTheKnownOnes) {
   EXPECT_NE(error.find("(did you mean 'device.ray_query'?)"), std::string::npos) << error;
 }
 
+// Sizes must not depend on the device: `graph check` would see other sizes than a render.
+TEST(CompilerValidation, SizesReadNoDeviceFeatures) {
+  CompileOptions options;
+  options.device_features = {{"device.ray_query", 1}};
+  const std::string error = single_error(
+      graph(
+          kClear + kShade,
+          R"("extra": { "type": "image2d", "format": "rgba8", "size": "8 * device.ray_query" },)"),
+      options);
+  EXPECT_NE(error.find("unknown name 'device.ray_query' (sizes may use viewport"),
+            std::string::npos)
+      << error;
+}
+
 TEST(CompilerValidation, SameMipInTwoLayoutsInOnePass) {
   const std::string e = single_error(graph(
       kClear +

@@ -252,8 +252,9 @@ class BenchRun {
             ? &reference_for(config, *refs.full_like_split, scene, camera, renderer, progress)
             : nullptr;
 
-    const graph::CompiledGraph compiled = catalog_.compile(
-        catalog_.graph(entry.file), scene, config.width, config.height, config.overrides);
+    const graph::CompiledGraph compiled =
+        catalog_.compile(catalog_.graph(entry.file), scene, config.width, config.height,
+                         config.overrides, &renderer.context());
     RenderRun run = renderer.render(compiled, catalog_.registry(), scene, camera,
                                     spec_.warmup_frames, spec_.frames);
 
@@ -370,8 +371,9 @@ class BenchRun {
     progress.note("voxgi: bench: " + target.what + " for " + where + ": not cached, rendering " +
                   std::to_string(frames) + " frames of " + spec_.reference.file_as_written);
     const auto start = Clock::now();
-    const graph::CompiledGraph compiled = catalog_.compile(
-        catalog_.graph(spec_.reference.file), scene, config.width, config.height, target.set);
+    const graph::CompiledGraph compiled =
+        catalog_.compile(catalog_.graph(spec_.reference.file), scene, config.width, config.height,
+                         target.set, &renderer.context());
     const RenderRun run = renderer.render(
         compiled, catalog_.registry(), scene, camera, 0, frames, [&](uint32_t done) {
           progress.step(target.what + " for " + where + ": frame " + std::to_string(done) + "/" +

@@ -25,13 +25,15 @@ scene::Scene& BenchCatalog::scene(const std::string& source) {
 
 graph::CompiledGraph BenchCatalog::compile(const graph::GraphDesc& desc, const scene::Scene& scene,
                                            uint32_t width, uint32_t height,
-                                           const std::map<std::string, std::string>& overrides) {
+                                           const std::map<std::string, std::string>& overrides,
+                                           const gpu::Context* device) {
   loader_.load_for_graph(desc, registry_);
   graph::CompileOptions options;
   options.viewport_width = width;
   options.viewport_height = height;
   options.scene_features = scene.features().as_map();
   options.overrides = overrides;
+  if (device) graph::use_device(options, *device);
   return graph::compile(desc, registry_, options);
 }
 

@@ -32,10 +32,12 @@ class BenchCatalog {
   // so only one scene is in memory at a time.
   scene::Scene& scene(const std::string& source);
   graph::Registry& registry() { return registry_; }
-  // Loads the plugins the graph needs, then compiles it for the scene and viewport.
+  // Loads the plugins the graph needs, then compiles it for the scene and viewport, and for the
+  // device that renders it (without one, device features read as absent).
   graph::CompiledGraph compile(const graph::GraphDesc& desc, const scene::Scene& scene,
                                uint32_t width, uint32_t height,
-                               const std::map<std::string, std::string>& overrides);
+                               const std::map<std::string, std::string>& overrides,
+                               const gpu::Context* device = nullptr);
 
  private:
   std::map<std::string, std::unique_ptr<graph::GraphDesc>> graphs_;

@@ -30,9 +30,10 @@ scene::Camera choose_camera(const scene::Scene& scene, const std::string& name);
 class Args;
 
 // The compile options `render` and `graph` both take from their command line (--set,
-// --full-barriers, --no-memory-sharing) for a scene and viewport.
+// --full-barriers, --no-memory-sharing) for a scene and viewport, and for the device that will
+// run the graph (null: none, so device features read as absent).
 graph::CompileOptions compile_options(const Args& args, const scene::Scene& scene, uint32_t width,
-                                      uint32_t height);
+                                      uint32_t height, const gpu::Context* device);
 
 // Loads the plugins a graph needs into `registry`.
 void load_plugins_for(const graph::GraphDesc& desc, graph::Registry& registry);

@@ -2,9 +2,11 @@
 
 #include <fstream>
 #include <iostream>
+#include <memory>
 
 #include "apps/voxgi/cli_args.hpp"
 #include "apps/voxgi/commands.hpp"
+#include "engine/gpu/context.hpp"
 #include "engine/graph/dump.hpp"
 #include "engine/runtime/scene_source.hpp"
 
@@ -21,6 +23,9 @@ Args graph_args(const std::string& verb) {
        {"set", true, true, "KEY=VALUE", "override a graph or pass parameter"},
        {"dot", true, false, "PATH", "also write the compiled graph as Graphviz DOT"},
        {"dump-dir", true, false, "DIR", "write every compile phase (JSON, DOT) to DIR"},
+       {"device", true, false, "INDEX|NAME",
+        "query this Vulkan device's features for `when` conditions (default: no device, every "
+        "device feature reads as absent)"},
        {"full-barriers", false, false, "", "compile with a full barrier between passes"},
        {"no-memory-sharing", false, false, "", "give every transient resource its own memory"},
        {"help", false, false, "", "show this help"}});
@@ -48,9 +53,17 @@ int graph_command(const std::vector<std::string>& argv) {
   graph::Registry registry;
   load_plugins_for(desc, registry);
 
+  // A graph is checked without a device unless one is named: checking must work on machines
+  // without Vulkan, and which device a graph will meet is not known here.
+  std::unique_ptr<gpu::Context> device;
+  if (const std::optional<std::string> name = args.value("device")) {
+    gpu::ContextOptions context_options;
+    context_options.device = *name;
+    device = std::make_unique<gpu::Context>(context_options);
+  }
   const graph::CompileOptions options =
       compile_options(args, scene, static_cast<uint32_t>(args.integer("width", 1280, 1, 16384)),
-                      static_cast<uint32_t>(args.integer("height", 720, 1, 16384)));
+                      static_cast<uint32_t>(args.integer("height", 720, 1, 16384)), device.get());
   const graph::CompiledGraph compiled = graph::compile(desc, registry, options);
 
   if (const std::optional<std::string> dump_dir = args.value("dump-dir")) {
@@ -63,7 +76,12 @@ int graph_command(const std::vector<std::string>& argv) {
   }
   if (verb == "check") {
     std::cout << desc.file << ": ok (" << compiled.passes.size() << " passes run, "
-              << compiled.culled.size() << " culled for scene '" << scene.source << "')\n";
+              << compiled.culled.size() << " culled for scene '" << scene.source << "'"
+              << (compiled.device_conditions.empty() ? ""
+                  : device                           ? " and device '" + compiled.device_name + "'"
+                           : "; conditions on device features read them as absent, --device D "
+                             "queries one")
+              << ")\n";
   } else {
     std::cout << "scene: " << scene.source << "\n" << graph::explain(compiled);
   }

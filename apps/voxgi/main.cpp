@@ -32,7 +32,7 @@ scene::Camera choose_camera(const scene::Scene& scene, const std::string& name) 
 }
 
 graph::CompileOptions compile_options(const Args& args, const scene::Scene& scene, uint32_t width,
-                                      uint32_t height) {
+                                      uint32_t height, const gpu::Context* device) {
   graph::CompileOptions options;
   options.viewport_width = width;
   options.viewport_height = height;
@@ -40,6 +40,7 @@ graph::CompileOptions compile_options(const Args& args, const scene::Scene& scen
   options.overrides = parse_overrides(args.values("set"));
   options.full_barriers = args.flag("full-barriers");
   options.alias_transients = !args.flag("no-memory-sharing");
+  if (device) graph::use_device(options, *device);
   return options;
 }
 

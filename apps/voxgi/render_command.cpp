@@ -107,19 +107,20 @@ int render_command(const std::vector<std::string>& argv) {
 
   graph::Registry registry;
   load_plugins_for(desc, registry);
-  const graph::CompileOptions options = compile_options(args, scene, width, height);
-  const graph::CompiledGraph compiled = graph::compile(desc, registry, options);
-  if (const std::optional<std::string> dump_dir = args.value("dump-dir")) {
-    graph::dump_phases(desc, compiled, *dump_dir);
-  }
-
+  // The device before compiling: `when` conditions may read its features. It is announced once
+  // the graph compiled, when rendering starts.
   gpu::ContextOptions context_options;
   context_options.device = args.value_or("device", "");
   const char* env_validation = std::getenv("VOXGI_VALIDATION");
   context_options.validation =
       args.flag("validation") || (env_validation && std::string(env_validation) == "1");
   gpu::Context context(context_options);
+  const graph::CompiledGraph compiled =
+      graph::compile(desc, registry, compile_options(args, scene, width, height, &context));
   std::cerr << "voxgi: device: " << context.device_summary() << "\n";
+  if (const std::optional<std::string> dump_dir = args.value("dump-dir")) {
+    graph::dump_phases(desc, compiled, *dump_dir);
+  }
 
   gpu::ShaderCompiler shaders({gpu::ShaderCompiler::default_shader_root()},
                               gpu::ShaderCompiler::default_cache_dir());

@@ -171,6 +171,36 @@ void Context::choose_physical_device(const ContextOptions& options) {
   queue_family_ = chosen.queue_family;
 }
 
+// Features graphs may test but no pass enables yet: supported, as the driver reports them.
+// A structure is chained only where its extension exists, as the specification requires.
+void Context::query_unused_features() {
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR ray_tracing{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  VkPhysicalDeviceRayQueryFeaturesKHR ray_query{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR acceleration{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceMeshShaderFeaturesEXT mesh{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MESH_SHADER_FEATURES_EXT};
+  VkPhysicalDeviceFeatures2 has{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  void** next = &has.pNext;
+  const auto chain = [&](const char* extension, auto& features) {
+    if (!has_device_extension(physical_device_, extension)) return false;
+    *next = &features;
+    next = &features.pNext;
+    return true;
+  };
+  const bool has_ray_tracing = chain(VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME, ray_tracing);
+  const bool has_ray_query = chain(VK_KHR_RAY_QUERY_EXTENSION_NAME, ray_query);
+  const bool has_acceleration = chain(VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME, acceleration);
+  const bool has_mesh = chain(VK_EXT_MESH_SHADER_EXTENSION_NAME, mesh);
+  vkGetPhysicalDeviceFeatures2(physical_device_, &has);
+  features_.ray_tracing_pipeline = has_ray_tracing && ray_tracing.rayTracingPipeline;
+  features_.ray_query = has_ray_query && ray_query.rayQuery;
+  features_.acceleration_structure = has_acceleration && acceleration.accelerationStructure;
+  features_.mesh_shader = has_mesh && mesh.meshShader;
+}
+
 void Context::create_device(const ContextOptions& options) {
   // What the device has.
   VkPhysicalDeviceShaderAtomicFloatFeaturesEXT has_atomic{
@@ -273,6 +303,8 @@ void Context::create_device(const ContextOptions& options) {
   load_extension_functions(instance_);
 
   features_.geometry_shader = e.geometryShader;
+  features_.shader_int64 = e.shaderInt64;
+  query_unused_features();
   uint32_t family_count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, nullptr);
   std::vector<VkQueueFamilyProperties> families(family_count);

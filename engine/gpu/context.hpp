@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/gpu/device_features.hpp"
 #include "engine/gpu/memory.hpp"
 
 namespace voxgi::gpu {
@@ -24,17 +25,6 @@ struct ContextOptions {
   std::string device;
   std::vector<const char*> instance_extensions;  // extra, e.g. for a window surface
   std::vector<const char*> device_extensions;    // extra, e.g. VK_KHR_swapchain
-};
-
-// What the chosen device can do beyond the required baseline.
-struct DeviceFeatures {
-  bool conservative_rasterization = false;  // VK_EXT_conservative_rasterization
-  bool atomic_float_add_buffer = false;     // shaderBufferFloat32AtomicAdd
-  bool atomic_float_add_image = false;      // shaderImageFloat32AtomicAdd
-  bool geometry_shader = false;
-  bool timestamps = false;  // graphics+compute queue supports timestamps
-  float timestamp_period_ns = 1.0f;
-  uint32_t max_push_descriptors = 0;
 };
 
 // Every linear kind also filters linearly between mips (so textureLod works on mip chains);
@@ -105,6 +95,7 @@ class Context {
   void create_instance(const ContextOptions& options);
   void choose_physical_device(const ContextOptions& options);
   void create_device(const ContextOptions& options);
+  void query_unused_features();
   void record_validation_message(const std::string& message);
   static VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(
       VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,

@@ -6,7 +6,10 @@
 #include <optional>
 #include <queue>
 #include <set>
+#include <stdexcept>
 
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/device_features.hpp"
 #include "engine/graph/expression.hpp"
 #include "engine/graph/resource_plan.hpp"
 
@@ -43,6 +46,11 @@ const CulledPass* CompiledGraph::find_culled(std::string_view pass_name) const {
     if (p.name == pass_name) return &p;
   }
   return nullptr;
+}
+
+void use_device(CompileOptions& options, const gpu::Context& context) {
+  options.device_features = gpu::device_feature_values(context.features());
+  options.device_name = context.device_name();
 }
 
 std::vector<Diagnostic> validate_pass(const CompiledPass& pass) {
@@ -125,6 +133,7 @@ class Compiler {
     graph_.viewport_width = options_.viewport_width;
     graph_.viewport_height = options_.viewport_height;
     graph_.full_barriers = options_.full_barriers;
+    resolve_device_features();
     resolve_parameters();
     resolve_resources();
     resolve_passes();
@@ -146,6 +155,29 @@ class Compiler {
   }
 
  private:
+  // ---- device features ---------------------------------------------------------------------
+  // Every known name is defined, so a misspelt one is an error with or without a device.
+  void resolve_device_features() {
+    graph_.device_queried = !options_.device_features.empty();
+    graph_.device_name = options_.device_name;
+    graph_.device_features = gpu::device_feature_values(gpu::DeviceFeatures{});
+    for (const auto& [name, value] : options_.device_features) {
+      if (!graph_.device_features.count(name)) {
+        throw std::invalid_argument("CompileOptions::device_features: unknown device feature '" +
+                                    name + "'");
+      }
+      graph_.device_features[name] = value;
+    }
+  }
+
+  // Scene and device features for `when` conditions. Sizes read no device features: a graph
+  // checked without a device would get other sizes than the one that runs.
+  void add_features(ExpressionEnv& env) const {
+    env.identifiers = options_.scene_features;
+    for (const auto& [name, value] : graph_.device_features) env.identifiers[name] = value;
+    env.identifier_families["device."] = "device feature";
+  }
+
   // ---- graph parameters and --set -------------------------------------------------------
   void resolve_parameters() {
     for (const GraphParam& p : desc_.parameters) graph_.parameters[p.name] = p.value;
@@ -654,12 +686,32 @@ class Compiler {
     if (pd.when.empty()) return;
     ExpressionEnv env;
     env.params = graph_.parameters;
-    env.identifiers = options_.scene_features;
+    add_features(env);
     env.identifier_kind = "scene feature";
     ExprField f{true, false, 0.0, pd.when, pd.when_loc};
     if (pd.when == "true" || pd.when == "false") f.loc.column -= 1;  // a JSON boolean, no quote
     const std::optional<double> value = evaluate(f, pd.name, "when", env);
-    if (value && *value == 0.0) w.culled = "when '" + pd.when + "' is false for this scene";
+    if (!value) return;
+    const std::vector<std::string> device_features = device_features_read(pd.when);
+    if (!device_features.empty()) {
+      graph_.device_conditions.push_back({pd.name, pd.when, device_features, *value != 0.0});
+    }
+    if (*value != 0.0) return;
+    w.culled = "when '" + pd.when + "' is false for this scene";
+    if (device_features.empty()) return;
+    w.culled += graph_.device_queried
+                    ? " and device" + (graph_.device_name.empty() ? std::string()
+                                                                  : " '" + graph_.device_name + "'")
+                    : " (compiled without a device: device features read as absent)";
+  }
+
+  // The device features an expression that evaluated without error reads.
+  static std::vector<std::string> device_features_read(const std::string& text) {
+    std::vector<std::string> features;
+    for (const std::string& name : Expression::parse(text).identifiers()) {
+      if (name.rfind("device.", 0) == 0) features.push_back(name);
+    }
+    return features;
   }
 
   void apply_pass_overrides() {

@@ -19,6 +19,11 @@ struct CompileOptions {
   uint32_t viewport_width = 1280;
   uint32_t viewport_height = 720;
   std::map<std::string, double> scene_features;  // "scene.has_emissive" → 1
+  // The device the graph will run on: "device.ray_query" → 1 (gpu::device_feature_values) and
+  // its name. Empty when compiling without a device (`voxgi graph check`): every device feature
+  // then reads as absent, and the reasons of passes culled by one say so.
+  std::map<std::string, double> device_features;
+  std::string device_name;
   std::map<std::string, std::string> overrides;  // --set key=value
   bool full_barriers = false;    // a full memory barrier before every pass (rules out sync bugs)
   bool alias_transients = true;  // let same-description transients with disjoint lives share
@@ -79,6 +84,14 @@ bool skip_leaves_undefined(const SlotBinding& binding);
 // naming the pass and the field ("params.resolution", "out.half_res"), without a location.
 std::vector<Diagnostic> validate_pass(const CompiledPass& pass);
 
+// A pass `when` condition that reads device features: which ones, and what it decided.
+struct DeviceCondition {
+  std::string pass;
+  std::string when;
+  std::vector<std::string> features;  // "device.ray_query", in order of appearance
+  bool value = false;                 // true: the pass is live as far as `when` goes
+};
+
 struct CulledPass {
   std::string name;
   std::string type;
@@ -120,9 +133,15 @@ struct CompiledGraph {
   uint32_t viewport_height = 0;
   bool full_barriers = false;
   std::map<std::string, double> parameters;  // graph parameters after overrides
-  std::vector<CompiledPass> passes;          // live, in execution order
-  std::vector<CulledPass> culled;            // in file order
-  std::vector<CompiledResource> resources;   // in file order
+  // Device features as conditions read them, and whether they came from a device (false:
+  // compiled without one, every feature absent).
+  std::map<std::string, double> device_features;
+  bool device_queried = false;
+  std::string device_name;
+  std::vector<DeviceCondition> device_conditions;  // in file order
+  std::vector<CompiledPass> passes;                // live, in execution order
+  std::vector<CulledPass> culled;                  // in file order
+  std::vector<CompiledResource> resources;         // in file order
   std::vector<PhysicalResource> physical;
   // Carried resources: from their end-of-frame state to the state of their first use.
   std::vector<Barrier> frame_start;
@@ -136,6 +155,9 @@ struct CompiledGraph {
   const CompiledPass* find_pass(std::string_view name) const;
   const CulledPass* find_culled(std::string_view name) const;
 };
+
+// Fills options.device_features and device_name from the device the graph will run on.
+void use_device(CompileOptions& options, const gpu::Context& context);
 
 // Throws GraphError listing every problem found, each once.
 CompiledGraph compile(const GraphDesc& desc, const Registry& registry,

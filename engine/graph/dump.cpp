@@ -190,6 +190,24 @@ std::string explain(const CompiledGraph& g) {
       out << "  " << name << " = " << format_number(value) << "\n";
     }
   }
+  out << "\ndevice features ("
+      << (g.device_queried ? (g.device_name.empty() ? std::string("of the device")
+                                                    : "of '" + g.device_name + "'")
+                           : std::string("no device: every feature reads as absent; "
+                                         "--device D queries one"))
+      << "):\n";
+  for (const auto& [name, value] : g.device_features) {
+    out << "  " << name << " = " << (value != 0.0 ? "true" : "false") << "\n";
+  }
+  if (!g.device_conditions.empty()) {
+    out << "conditions decided by device features:\n";
+    for (const DeviceCondition& c : g.device_conditions) {
+      std::string features;
+      for (const std::string& f : c.features) features += (features.empty() ? "" : ", ") + f;
+      out << "  " << c.pass << ": when '" << c.when << "' is " << (c.value ? "true" : "false")
+          << " (reads " << features << ")" << (c.value ? "" : ": pass culled") << "\n";
+    }
+  }
   out << "\nschedule (" << g.passes.size() << " passes):\n";
   if (!g.frame_start.empty()) {
     out << "  frame start:\n";
@@ -322,6 +340,13 @@ Json desc_to_json(const GraphDesc& d) {
 Json resolved_to_json(const CompiledGraph& g) {
   Json j;
   j["parameters"] = g.parameters;
+  j["device"] = {
+      {"queried", g.device_queried}, {"name", g.device_name}, {"features", g.device_features}};
+  j["device_conditions"] = Json::array();
+  for (const DeviceCondition& c : g.device_conditions) {
+    j["device_conditions"].push_back(
+        {{"pass", c.pass}, {"when", c.when}, {"features", c.features}, {"value", c.value}});
+  }
   j["passes"] = Json::array();
   for (const CompiledPass& p : g.passes) {
     Json pass{

@@ -140,6 +140,18 @@ void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
   // Before anything is released or allocated: a graph too large for the device is refused
   // and the current one keeps running.
   check_memory_budget(graph, device_memory_budget(context_.physical_device()));
+  // `when` conditions on device features are decided when compiling; they must have been
+  // decided for this device, or the graph would run passes the device cannot.
+  if (!graph.device_conditions.empty() &&
+      (!graph.device_queried ||
+       graph.device_features != gpu::device_feature_values(context_.features()))) {
+    throw std::invalid_argument(
+        "graph '" + graph.file + "': the `when` of pass '" + graph.device_conditions[0].pass +
+        "' reads device features, but the graph was compiled " +
+        (graph.device_queried ? "for another device ('" + graph.device_name + "')"
+                              : std::string("without a device")) +
+        "; compile it for '" + context_.device_name() + "' (graph::use_device)");
+  }
   context_.wait_idle();
   // Persistent contents survive a rebuild when their description and usage still fit.
   struct Kept {

@@ -232,6 +232,18 @@ double eval(const Node& n, const ExpressionEnv& env) {
     case Node::Op::Identifier: {
       auto it = env.identifiers.find(n.name);
       if (it == env.identifiers.end()) {
+        for (const auto& [prefix, kind] : env.identifier_families) {
+          if (n.name.compare(0, prefix.size(), prefix) != 0) continue;
+          std::vector<std::string> known;
+          for (const auto& [name, value] : env.identifiers) {
+            if (name.compare(0, prefix.size(), prefix) == 0) known.push_back(name);
+          }
+          std::string list;
+          for (const std::string& name : known) list += (list.empty() ? "" : ", ") + name;
+          throw ExpressionError(n.column,
+                                "unknown " + kind + " '" + n.name + "' (known: " + list + ")",
+                                did_you_mean(n.name, known));
+        }
         throw ExpressionError(
             n.column,
             "unknown " + env.identifier_kind + " '" + n.name + "'" +
@@ -271,7 +283,22 @@ double eval(const Node& n, const ExpressionEnv& env) {
   return a / b;
 }
 
+void collect_identifiers(const Node& n, std::vector<std::string>& names) {
+  if (n.op == Node::Op::Identifier &&
+      std::find(names.begin(), names.end(), n.name) == names.end()) {
+    names.push_back(n.name);
+  }
+  if (n.lhs) collect_identifiers(*n.lhs, names);
+  if (n.rhs) collect_identifiers(*n.rhs, names);
+}
+
 }  // namespace
+
+std::vector<std::string> Expression::identifiers() const {
+  std::vector<std::string> names;
+  if (root_) collect_identifiers(*root_, names);
+  return names;
+}
 
 Expression::Expression(Expression&&) noexcept = default;
 Expression& Expression::operator=(Expression&&) noexcept = default;

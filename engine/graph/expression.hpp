@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace voxgi::graph {
 
@@ -31,6 +32,9 @@ struct ExpressionEnv {
   // Shown in "unknown identifier" errors, e.g. "scene feature", and what is allowed instead.
   std::string identifier_kind = "identifier";
   std::string identifier_help;
+  // Names under a prefix that form a closed set, e.g. "device." → "device feature": an unknown
+  // name under the prefix is reported as that kind, with every known name of the prefix listed.
+  std::map<std::string, std::string> identifier_families;
 };
 
 class Expression {
@@ -43,6 +47,8 @@ class Expression {
   // Throws ExpressionError for unknown names, division by zero and non-finite results.
   double evaluate(const ExpressionEnv& env) const;
   const std::string& text() const { return text_; }
+  // The bare names the expression reads, each once, in order of appearance.
+  std::vector<std::string> identifiers() const;
 
   Expression(Expression&&) noexcept;
   Expression& operator=(Expression&&) noexcept;

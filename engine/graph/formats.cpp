@@ -112,6 +112,8 @@ std::string access_name(Access access) {
       return "transfer-read";
     case Access::TransferWrite:
       return "transfer-write";
+    case Access::IndirectRead:
+      return "indirect";
   }
   return "?";
 }
@@ -185,6 +187,11 @@ ResourceState state_for(Access access, uint32_t stages, ResourceKind kind, VkFor
       s.layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
       s.stages = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
       s.access = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+      break;
+    case Access::IndirectRead:
+      // Dispatch and draw commands read their arguments in the draw-indirect stage.
+      s.stages = VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
+      s.access = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
       break;
   }
   if (buffer) s.layout = VK_IMAGE_LAYOUT_UNDEFINED;

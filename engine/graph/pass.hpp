@@ -29,12 +29,13 @@ class ShaderCompiler;
 namespace voxgi::scene {
 struct Scene;
 class GpuScene;
+class GpuBvh;
 }  // namespace voxgi::scene
 
 namespace voxgi::graph {
 
 // Bumped whenever PassTypeInfo, Pass, PassContext or Registry change layout or meaning.
-inline constexpr uint32_t kPluginAbiVersion = 2;
+inline constexpr uint32_t kPluginAbiVersion = 3;
 
 enum class ParamType { Bool, Int, Float, Enum };
 // "bool", "int", "float" or "enum".
@@ -77,6 +78,10 @@ enum class Access {
   UniformRead,       // uniform buffer
   TransferRead,
   TransferWrite,
+  // Buffer of indirect arguments read by vkCmdDispatchIndirect or vkCmdDraw*Indirect (input
+  // slots of buffers only). It synchronises with the draw-indirect stage whatever the slot's
+  // stages say, since the command, not a shader, reads it.
+  IndirectRead,
 };
 
 // Shader stages a slot is used in (bit mask).
@@ -191,6 +196,9 @@ class PassContext : public PassDeclaration {
   gpu::ShaderCompiler& shaders() const;
   const scene::Scene& scene() const;
   scene::GpuScene& gpu_scene() const;
+  // The scene's BVH, shared by every pass that traces rays (GpuScene::bvh): built on first use,
+  // refit when instances moved. Bind its buffers as docs/design.md describes.
+  const scene::GpuBvh& scene_bvh() const;
   const FrameInfo& frame() const;
 
   const BoundResource& resource(std::string_view slot) const;

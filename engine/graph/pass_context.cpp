@@ -6,6 +6,7 @@
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/graph/pass_context_impl.hpp"
+#include "engine/scene/gpu_scene.hpp"
 
 namespace voxgi::graph {
 
@@ -80,6 +81,10 @@ const scene::Scene& PassContext::scene() const {
 }
 scene::GpuScene& PassContext::gpu_scene() const {
   return *impl_.gpu_scene;
+}
+
+const scene::GpuBvh& PassContext::scene_bvh() const {
+  return impl_.gpu_scene->bvh(*impl_.scene);
 }
 const FrameInfo& PassContext::frame() const {
   return *impl_.frame;

@@ -13,6 +13,19 @@ void Registry::add(PassTypeInfo info, PassFactory factory) {
   if (!factory) {
     throw std::invalid_argument("pass type '" + info.type + "' registered without a factory");
   }
+  // Indirect arguments are read by commands from buffers: an image or an output there is a bug
+  // of the type's declaration, found when its plugin registers it.
+  const auto check_indirect = [&](const std::vector<SlotSpec>& slots, bool inputs) {
+    for (const SlotSpec& slot : slots) {
+      if (slot.access != Access::IndirectRead) continue;
+      if (!inputs || slot.kinds != kinds(ResourceKind::Buffer)) {
+        throw std::invalid_argument("pass type '" + info.type + "' slot '" + slot.name +
+                                    "': indirect access is for input slots of buffers only");
+      }
+    }
+  };
+  check_indirect(info.inputs, true);
+  check_indirect(info.outputs, false);
   entries_.push_back(Entry{std::move(info), std::move(factory)});
 }
 

@@ -30,6 +30,7 @@ VkImageUsageFlags image_usage_for(Access access) {
     case Access::DepthAttachment:
       return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
     case Access::UniformRead:
+    case Access::IndirectRead:
       return 0;
     case Access::TransferRead:
       return VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
@@ -47,6 +48,8 @@ VkBufferUsageFlags buffer_usage_for(Access access) {
       return VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     case Access::TransferWrite:
       return VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    case Access::IndirectRead:
+      return VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
     default:
       return VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   }

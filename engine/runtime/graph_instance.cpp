@@ -32,6 +32,7 @@ GraphInstance::GraphInstance(Runtime& runtime, graph::GraphDesc desc, GraphSetti
   options.viewport_width = settings_.width;
   options.viewport_height = settings_.height;
   options.scene_features = runtime_.scene().features().as_map();
+  graph::use_device(options, runtime_.context());
   options.overrides = settings_.overrides;
   options.full_barriers = settings_.full_barriers;
   options.alias_transients = settings_.alias_transients;

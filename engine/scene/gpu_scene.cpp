@@ -6,7 +6,9 @@
 
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/error.hpp"
+#include "engine/scene/bvh.hpp"
 #include "engine/scene/geometry.hpp"
+#include "engine/scene/gpu_bvh.hpp"
 
 namespace voxgi::scene {
 
@@ -108,8 +110,42 @@ GpuScene::GpuScene(gpu::Context& context, const Scene& scene) : context_(&contex
   }
 }
 
+// The BVH service behind GpuScene::bvh(): the tree, its GPU copy and the instance transforms
+// it was last fitted to.
+struct SceneBvh {
+  Bvh bvh;
+  std::unique_ptr<GpuBvh> gpu;
+  std::vector<glm::mat4> worlds;
+};
+
+namespace {
+
+std::vector<glm::mat4> instance_worlds(const Scene& scene) {
+  std::vector<glm::mat4> worlds;
+  for (const Instance& instance : scene.instances()) worlds.push_back(instance.world);
+  return worlds;
+}
+
+}  // namespace
+
 GpuScene::~GpuScene() {
   release_descriptors();
+}
+
+const GpuBvh& GpuScene::bvh(const Scene& scene) {
+  std::vector<glm::mat4> worlds = instance_worlds(scene);
+  if (!bvh_) {
+    auto built = std::make_unique<SceneBvh>();
+    built->bvh = Bvh::build(scene);
+    built->gpu = std::make_unique<GpuBvh>(*context_, scene, built->bvh);
+    built->worlds = std::move(worlds);
+    bvh_ = std::move(built);
+  } else if (worlds != bvh_->worlds) {
+    bvh_->bvh.refit(scene);
+    bvh_->gpu->update(scene, bvh_->bvh);
+    bvh_->worlds = std::move(worlds);
+  }
+  return *bvh_->gpu;
 }
 
 void GpuScene::release_descriptors() {

@@ -25,6 +25,9 @@ class Context;
 
 namespace voxgi::scene {
 
+class GpuBvh;
+struct SceneBvh;
+
 // std430 mirrors of the structs in shaders/lib/scene.glsl. Keep them in step.
 struct GpuMaterial {
   glm::vec4 base_color;
@@ -119,6 +122,15 @@ class GpuScene {
   // lights) as at construction; call it between frames, not while one using it is in flight.
   bool update(const Scene& scene);
 
+  // The scene's BVH on the GPU (shaders/lib/bvh_traversal.glsl), the one every pass that traces
+  // rays binds. Built on first use and refit here when the scene's instances moved since it was
+  // built or last refit, so the passes and graphs sharing this GpuScene build and refit it
+  // once. `scene` is the scene this GpuScene was made from, as it is now. It uploads and waits
+  // for the queue: call it from setup() or execute(), or between frames.
+  const GpuBvh& bvh(const Scene& scene);
+  // Whether bvh() has built it (tests: a scene nobody traces has none).
+  bool has_bvh() const { return bvh_ != nullptr; }
+
   const gpu::Buffer& vertices() const { return *vertices_; }
   const gpu::Buffer& indices() const { return *indices_; }
   const gpu::Buffer& materials() const { return *materials_; }
@@ -169,6 +181,7 @@ class GpuScene {
     int32_t vertex_offset = 0;
   };
   std::vector<std::vector<PrimitiveRange>> ranges_;
+  std::unique_ptr<SceneBvh> bvh_;  // built by bvh() on first use
   std::vector<Instance> cpu_instances_;
   std::vector<GpuMaterial> gpu_materials_;
   std::vector<GpuInstance> gpu_instances_;

@@ -18,7 +18,6 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/pass.hpp"
-#include "engine/scene/bvh.hpp"
 #include "engine/scene/gpu_bvh.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "passes/reference/passes.hpp"
@@ -83,9 +82,7 @@ struct ArrayView {
 class PathTracerPass final : public graph::Pass {
  public:
   void setup(graph::PassContext& ctx) override {
-    bvh_ = scene::Bvh::build(ctx.scene());
-    gpu_bvh_ = std::make_unique<scene::GpuBvh>(ctx.gpu(), ctx.scene(), bvh_);
-    fresh_bvh_ = true;
+    ctx.scene_bvh();  // built now rather than while the first frame records
 
     gpu::ShaderRequest request;
     request.path = "reference/path_trace.comp";
@@ -121,11 +118,8 @@ class PathTracerPass final : public graph::Pass {
 
   void execute(graph::PassContext& ctx) override {
     const graph::FrameInfo& frame = ctx.frame();
-    if (frame.geometry_changed && !fresh_bvh_) {
-      bvh_.refit(ctx.scene());
-      gpu_bvh_->update(ctx.scene(), bvh_);
-    }
-    fresh_bvh_ = false;
+    // Refit by the scene service when instances moved since it last saw them.
+    const scene::GpuBvh& bvh = ctx.scene_bvh();
     if (frame.first_frame || frame.camera_changed || frame.lights_changed ||
         frame.geometry_changed || ctx.params_changed()) {
       samples_done_ = 0;
@@ -149,10 +143,10 @@ class PathTracerPass final : public graph::Pass {
     pipeline_->bind(cmd);
     gpu::DescriptorWriter()
         .uniform_buffer(0, *frame.uniform_buffer)
-        .storage_buffer(1, gpu_bvh_->nodes())
-        .storage_buffer(2, gpu_bvh_->triangles())
-        .storage_buffer(3, gpu_bvh_->shading())
-        .storage_buffer(4, gpu_bvh_->emitters())
+        .storage_buffer(1, bvh.nodes())
+        .storage_buffer(2, bvh.triangles())
+        .storage_buffer(3, bvh.shading())
+        .storage_buffer(4, bvh.emitters())
         .storage_image(5, accumulation.view, accumulation.layout)
         .storage_image(6, linear.view, linear.layout)
         .storage_image(7, direct.view, direct.layout)
@@ -167,7 +161,7 @@ class PathTracerPass final : public graph::Pass {
                             &scene_set, 0, nullptr);
 
     PathTracePush push{};
-    const glm::vec3 origin = gpu_bvh_->origin();
+    const glm::vec3 origin = bvh.origin();
     push.origin[0] = origin.x;
     push.origin[1] = origin.y;
     push.origin[2] = origin.z;
@@ -180,8 +174,8 @@ class PathTracerPass final : public graph::Pass {
     push.flags = (ctx.flag("lambert") ? kFlagLambert : 0u) |
                  (ctx.flag("pixel_jitter") ? kFlagPixelJitter : 0u) |
                  (ctx.flag("deferred_layers") ? kFlagDeferredLayers : 0u);
-    push.node_count = gpu_bvh_->node_count();
-    push.emitter_count = gpu_bvh_->emitter_count();
+    push.node_count = bvh.node_count();
+    push.emitter_count = bvh.emitter_count();
     pipeline_->push_constants(cmd, push);
     vkCmdDispatch(cmd, (extent.width + kTile - 1) / kTile, (extent.height + kTile - 1) / kTile, 1);
     samples_done_ += samples;
@@ -189,9 +183,6 @@ class PathTracerPass final : public graph::Pass {
 
  private:
   std::optional<gpu::ComputePipeline> pipeline_;
-  scene::Bvh bvh_;
-  std::unique_ptr<scene::GpuBvh> gpu_bvh_;
-  bool fresh_bvh_ = false;
   ArrayView srgb_view_, linear_view_;
   uint32_t samples_done_ = 0;
 };

@@ -120,6 +120,39 @@ std::string location_of(const std::string& file, const std::string& text, const 
   return file + ":" + std::to_string(line) + ":" + std::to_string(at - line_start + 1);
 }
 
+// A `when` on a device feature: misspelt, it is located and the known names listed; without
+// --device every feature reads as absent and `graph explain` says which conditions that decided.
+TEST_F(VoxgiCli, GraphCheckReadsDeviceFeaturesOnlyFromANamedDevice) {
+  std::string text = default_graph_text();
+  const std::string lights = "\"when\": \"scene.has_lights\"";
+  ASSERT_NE(text.find(lights), std::string::npos) << "graphs/default.json changed";
+  std::string misspelt = text;
+  misspelt.replace(misspelt.find(lights), lights.size(), "\"when\": \"device.ray_querry\"");
+  write_text(dir_ / "misspelt.json", misspelt);
+  const ProcessResult bad = voxgi({"graph", "check", "misspelt.json"});
+  EXPECT_TRUE(exited_with(bad, kError));
+  EXPECT_TRUE(
+      stderr_has(bad, {location_of("misspelt.json", misspelt, "\"when\"", "device.ray_querry") +
+                           ": error: pass 'shadows' field 'when'",
+                       "unknown device feature 'device.ray_querry' (known: ", "device.ray_query, ",
+                       "did you mean 'device.ray_query'?"}));
+
+  text.replace(text.find(lights), lights.size(),
+               "\"when\": \"scene.has_lights && device.timestamps\"");
+  write_text(dir_ / "device.json", text);
+  const ProcessResult none = voxgi({"graph", "explain", "device.json"});
+  EXPECT_TRUE(exited_with(none, 0));
+  EXPECT_TRUE(stdout_has(
+      none, {"device features (no device: every feature reads as absent; --device D queries one)",
+             "  shadows: when 'scene.has_lights && device.timestamps' is false (reads "
+             "device.timestamps): pass culled",
+             "(compiled without a device: device features read as absent)"}));
+  if (voxgi({"devices"}).exit_code != 0) return;  // no Vulkan device to name here
+  const ProcessResult with = voxgi({"graph", "explain", "device.json", "--device", "0"});
+  EXPECT_TRUE(exited_with(with, 0));
+  EXPECT_TRUE(stdout_has(with, {"device features (of '"}));
+}
+
 std::string vct_graph_text() {
   return read_text(std::filesystem::path(VOXGI_SOURCE_DIR) / "graphs" / "vct.json");
 }

@@ -25,6 +25,20 @@ TEST_F(ContextTest, CreatesDeviceAndPrintsSummary) {
   EXPECT_GT(gpu.features().timestamp_period_ns, 0.0f);
 }
 
+TEST_F(ContextTest, DeviceFeaturesHaveOneGraphNameEach) {
+  const std::map<std::string, double> values = gpu::device_feature_values(context().features());
+  ASSERT_EQ(values.size(), gpu::device_feature_names().size());
+  for (const gpu::DeviceFeatureName& f : gpu::device_feature_names()) {
+    ASSERT_TRUE(values.count(f.name)) << f.name;
+    EXPECT_EQ(f.name.rfind("device.", 0), 0u) << f.name;
+    EXPECT_FALSE(f.doc.empty()) << f.name;
+  }
+  // What the context enables is what it reports.
+  EXPECT_EQ(values.at("device.conservative_rasterization") != 0.0,
+            context().features().conservative_rasterization);
+  EXPECT_EQ(values.at("device.geometry_shader") != 0.0, context().features().geometry_shader);
+}
+
 TEST_F(ContextTest, SamplersAreCachedPerKind) {
   gpu::Context& gpu = context();
   const gpu::SamplerKind kinds[] = {

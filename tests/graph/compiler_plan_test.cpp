@@ -62,6 +62,53 @@ TEST(CompilerCulling, WhenFalseCullsWithReason) {
   EXPECT_TRUE(with.culled.empty());
 }
 
+const std::string kDeviceChoice = kClear + R"(
+    { "name": "traced", "type": "test.blur", "when": "device.ray_query && scene.has_glossy", "in": { "src": "hdr" }, "out": { "dst": "spec" } },
+    { "name": "shade", "type": "test.shade", "in": { "src": "hdr", "extra": "spec" }, "out": { "color": "ldr" } })";
+const std::string kSpec = R"("spec": { "type": "image2d", "format": "rgba16f", "size": 8 },)";
+
+TEST(CompilerCulling, WhenReadsDeviceFeatures) {
+  CompileOptions options;
+  options.scene_features = {{"scene.has_glossy", 1}};
+  options.device_features = {{"device.ray_query", 1}, {"device.shader_int64", 1}};
+  options.device_name = "test gpu";
+  const CompiledGraph with = compile_graph(kSpec, kDeviceChoice, options);
+  EXPECT_EQ(schedule(with), (std::vector<std::string>{"clear", "traced", "shade"}));
+  EXPECT_TRUE(with.device_queried);
+  EXPECT_EQ(with.device_name, "test gpu");
+  EXPECT_DOUBLE_EQ(with.device_features.at("device.ray_query"), 1.0);
+  // Names the options leave out read as absent.
+  EXPECT_DOUBLE_EQ(with.device_features.at("device.ray_tracing_pipeline"), 0.0);
+  ASSERT_EQ(with.device_conditions.size(), 1u);
+  EXPECT_EQ(with.device_conditions[0].pass, "traced");
+  EXPECT_EQ(with.device_conditions[0].features, (std::vector<std::string>{"device.ray_query"}));
+  EXPECT_TRUE(with.device_conditions[0].value);
+
+  options.device_features = {{"device.ray_query", 0}};
+  const CompiledGraph without = compile_graph(kSpec, kDeviceChoice, options);
+  EXPECT_EQ(schedule(without), (std::vector<std::string>{"clear", "shade"}));
+  EXPECT_EQ(without.find_culled("traced")->reason,
+            "when 'device.ray_query && scene.has_glossy' is false for this scene and device "
+            "'test gpu'");
+  ASSERT_EQ(without.device_conditions.size(), 1u);
+  EXPECT_FALSE(without.device_conditions[0].value);
+}
+
+TEST(CompilerCulling, WithoutADeviceEveryDeviceFeatureIsAbsent) {
+  CompileOptions options;
+  options.scene_features = {{"scene.has_glossy", 1}};
+  const CompiledGraph g = compile_graph(kSpec, kDeviceChoice, options);
+  EXPECT_FALSE(g.device_queried);
+  EXPECT_EQ(schedule(g), (std::vector<std::string>{"clear", "shade"}));
+  EXPECT_EQ(g.find_culled("traced")->reason,
+            "when 'device.ray_query && scene.has_glossy' is false for this scene (compiled "
+            "without a device: device features read as absent)");
+  for (const auto& [name, value] : g.device_features) EXPECT_DOUBLE_EQ(value, 0.0) << name;
+  EXPECT_TRUE(g.device_features.count("device.conservative_rasterization"));
+  // A condition that does not read the device says nothing about it.
+  EXPECT_TRUE(compile_graph(kSpec, kClear + kShade, options).device_conditions.empty());
+}
+
 TEST(CompilerCulling, UnreachablePassesAreCulled) {
   const CompiledGraph g = compile_graph(
       R"("debug": { "type": "image2d", "format": "rgba16f", "size": 8 },)", kClear + kShade + R"(
@@ -248,6 +295,56 @@ TEST(CompilerBarriers, PersistentResourcesTransitionAtFrameStart) {
   EXPECT_EQ(start->new_layout, VK_IMAGE_LAYOUT_GENERAL);
   EXPECT_EQ(start->src_stages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
   EXPECT_EQ(find_barrier(g, g.find_pass("accumulate")->barriers, "history"), nullptr);
+}
+
+// Indirect arguments written by a compute pass reach the dispatch through the draw-indirect
+// stage; the buffer gets the indirect usage on top of storage.
+TEST(CompilerBarriers, ComputeWrittenIndirectArguments) {
+  const CompiledGraph g = compile_graph(
+      R"("args": { "type": "buffer", "size": 64 },
+         "a": { "type": "image2d", "format": "rgba16f", "size": 8 },
+         "b": { "type": "image2d", "format": "rgba16f", "size": 8 },
+         "c": { "type": "image2d", "format": "rgba16f", "size": 8 },)",
+      R"({ "name": "fill", "type": "test.fill", "out": { "buf": "args" } },
+      { "name": "first", "type": "test.indirect_dispatch", "in": { "args": "args" }, "out": { "dst": "a" } },
+      { "name": "second", "type": "test.indirect_dispatch", "in": { "args": "args" }, "out": { "dst": "b" } },
+      { "name": "third", "type": "test.indirect_dispatch", "in": { "args": "args", "data": "args" }, "out": { "dst": "c" } },
+      { "name": "shade", "type": "test.shade", "in": { "src": "a", "extra": "b" }, "out": { "color": "hdr" } },
+      { "name": "shade2", "type": "test.shade", "in": { "src": "c", "extra": "hdr" }, "out": { "color": "ldr" } })");
+  EXPECT_EQ(schedule(g),
+            (std::vector<std::string>{"fill", "first", "second", "third", "shade", "shade2"}));
+  const Barrier* b = find_barrier(g, g.find_pass("first")->barriers, "args");
+  ASSERT_NE(b, nullptr);
+  EXPECT_TRUE(b->is_buffer);
+  EXPECT_EQ(b->src_stages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  EXPECT_EQ(b->src_access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  EXPECT_EQ(b->dst_stages, VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT);
+  EXPECT_EQ(b->dst_access, VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT);
+  // Already visible to indirect reads: the second reader needs no barrier.
+  EXPECT_EQ(find_barrier(g, g.find_pass("second")->barriers, "args"), nullptr);
+  // A shader reading the same arguments as storage needs the write made visible to it too.
+  const Barrier* storage = find_barrier(g, g.find_pass("third")->barriers, "args");
+  ASSERT_NE(storage, nullptr);
+  EXPECT_EQ(storage->src_access, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+  EXPECT_TRUE(storage->dst_access & VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  EXPECT_TRUE(storage->dst_stages & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  const CompiledResource& args = g.resources[static_cast<size_t>(g.find_resource("args"))];
+  EXPECT_TRUE(args.buffer_usage & VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+  EXPECT_TRUE(args.buffer_usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  EXPECT_EQ(access_name(Access::IndirectRead), "indirect");
+}
+
+// Indirect arguments come from buffers and are only read: other declarations are refused.
+TEST(CompilerBarriers, IndirectAccessIsForBufferInputsOnly) {
+  Registry r;
+  PassTypeInfo image_args;
+  image_args.type = "bad.image_args";
+  image_args.inputs = {test::slot("args", test::kImage2D, Access::IndirectRead, kStageCompute)};
+  EXPECT_THROW(r.add(image_args, [] { return nullptr; }), std::invalid_argument);
+  PassTypeInfo output_args;
+  output_args.type = "bad.output_args";
+  output_args.outputs = {test::slot("args", test::kBuffer, Access::IndirectRead, kStageCompute)};
+  EXPECT_THROW(r.add(output_args, [] { return nullptr; }), std::invalid_argument);
 }
 
 TEST(CompilerBarriers, FullBarriersMode) {

@@ -312,6 +312,36 @@ TEST(CompilerValidation, UnknownSceneFeatureInWhen) {
       "mean 'scene.has_glossy'?)");
 }
 
+TEST(CompilerValidation, UnknownDeviceFeatureInWhenListsTheKnownOnes) {
+  const std::string error = single_error(graph(
+      kClear +
+      R"(    { "name": "shade", "type": "test.shade", "when": "device.ray_querry", "in": { "src": "hdr" }, "out": { "color": "ldr" } },
+)"));
+  EXPECT_EQ(error.rfind("graphs/test.json:10:55: error: pass 'shade' field 'when': in expression "
+                        "\"device.ray_querry\" at column 1: unknown device feature "
+                        "'device.ray_querry' (known: ",
+                        0),
+            0u)
+      << error;
+  EXPECT_NE(error.find("device.ray_query, device.ray_tracing_pipeline"), std::string::npos)
+      << error;
+  EXPECT_NE(error.find("(did you mean 'device.ray_query'?)"), std::string::npos) << error;
+}
+
+// Sizes must not depend on the device: `graph check` would see other sizes than a render.
+TEST(CompilerValidation, SizesReadNoDeviceFeatures) {
+  CompileOptions options;
+  options.device_features = {{"device.ray_query", 1}};
+  const std::string error = single_error(
+      graph(
+          kClear + kShade,
+          R"("extra": { "type": "image2d", "format": "rgba8", "size": "8 * device.ray_query" },)"),
+      options);
+  EXPECT_NE(error.find("unknown name 'device.ray_query' (sizes may use viewport"),
+            std::string::npos)
+      << error;
+}
+
 TEST(CompilerValidation, SameMipInTwoLayoutsInOnePass) {
   const std::string e = single_error(graph(
       kClear +

@@ -38,6 +38,40 @@ Compiled compile_sample() {
   return {std::move(desc), std::move(graph)};
 }
 
+TEST(Dump, ExplainListsDeviceFeaturesAndTheConditionsTheyDecided) {
+  static const Registry registry = test::make_registry();
+  CompileOptions options;
+  options.device_features = {{"device.ray_query", 1}};
+  options.device_name = "test gpu";
+  const char* text = R"({
+  "resources": {
+    "hdr": { "type": "image2d", "format": "rgba16f", "size": 8 },
+    "spec": { "type": "image2d", "format": "rgba16f", "size": 8 },
+    "ldr": { "type": "image2d", "format": "rgba8", "size": 8 } },
+  "passes": [
+    { "name": "clear", "type": "test.clear", "out": { "color": "hdr" } },
+    { "name": "traced", "type": "test.blur", "when": "device.ray_query", "in": { "src": "hdr" }, "out": { "dst": "spec" } },
+    { "name": "meshed", "type": "test.blur", "when": "!device.ray_query && device.mesh_shader", "in": { "src": "hdr" }, "out": { "dst": "spec" } },
+    { "name": "shade", "type": "test.shade", "in": { "src": "hdr", "extra": "spec" }, "out": { "color": "ldr" } } ],
+  "outputs": { "display": "ldr" } })";
+  const CompiledGraph g = compile(parse_graph(text, "graphs/device.json"), registry, options);
+  const std::string out = explain(g);
+  EXPECT_NE(out.find("device features (of 'test gpu'):\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("  device.ray_query = true\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("  device.mesh_shader = false\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("conditions decided by device features:\n"
+                     "  traced: when 'device.ray_query' is true (reads device.ray_query)\n"
+                     "  meshed: when '!device.ray_query && device.mesh_shader' is false (reads "
+                     "device.ray_query, device.mesh_shader): pass culled\n"),
+            std::string::npos)
+      << out;
+
+  const CompiledGraph none = compile(parse_graph(text, "graphs/device.json"), registry, {});
+  EXPECT_NE(explain(none).find("device features (no device: every feature reads as absent; "
+                               "--device D queries one):"),
+            std::string::npos);
+}
+
 TEST(Dump, ExplainListsScheduleCulledResourcesAndMemory) {
   const Compiled c = compile_sample();
   const std::string text = explain(c.graph);

@@ -242,6 +242,33 @@ class ExecutorTest : public voxgi::test::GpuTest {
   std::unique_ptr<Executor> executor_;
 };
 
+TEST_F(ExecutorTest, DeviceConditionsMustBeDecidedForTheDevice) {
+  std::string text = kGraph;
+  const std::string accumulate = R"("name": "accumulate", )";
+  text.replace(text.find(accumulate), accumulate.size(),
+               accumulate + R"("when": "device.shader_int64 || !device.shader_int64", )");
+  CompileOptions options;
+  options.viewport_width = kSize;
+  options.viewport_height = kSize;
+  const CompiledGraph without = compile(parse_graph(text, "exec.json"), registry_, options);
+  try {
+    build(without);
+    FAIL() << "built a graph whose device conditions were decided without a device";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the `when` of pass 'accumulate' reads device features, "
+                                         "but the graph was compiled without a device"),
+              std::string::npos)
+        << e.what();
+  }
+
+  use_device(options, context());
+  const CompiledGraph with = compile(parse_graph(text, "exec.json"), registry_, options);
+  EXPECT_EQ(with.device_name, context().device_name());
+  EXPECT_EQ(with.device_features, gpu::device_feature_values(context().features()));
+  Executor& executor = build(with);
+  EXPECT_EQ(render_error(executor), "");
+}
+
 TEST_F(ExecutorTest, RunsComputePassesInDependencyOrder) {
   Executor& executor = build();
   ASSERT_EQ(executor.compiled().passes.size(), 3u);

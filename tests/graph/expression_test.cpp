@@ -141,5 +141,28 @@ TEST(Expression, HugeExpressionsAreRefusedNotCrashed) {
   EXPECT_EQ(eval(long_sum), 1000.0);
 }
 
+TEST(Expression, UnknownNameOfAClosedFamilyListsTheKnownOnes) {
+  ExpressionEnv env;
+  env.identifiers = {{"device.ray_query", 1}, {"device.shader_int64", 0}, {"scene.has_sky", 0}};
+  env.identifier_kind = "scene feature";
+  env.identifier_families["device."] = "device feature";
+  try {
+    evaluate_expression("scene.has_sky || device.ray_quey", env);
+    FAIL() << "expected an error";
+  } catch (const ExpressionError& e) {
+    EXPECT_EQ(e.column(), 18);
+    EXPECT_STREQ(e.what(),
+                 "unknown device feature 'device.ray_quey' (known: device.ray_query, "
+                 "device.shader_int64)");
+    EXPECT_EQ(e.hint(), "device.ray_query");
+  }
+}
+
+TEST(Expression, IdentifiersAreListedOnceInOrder) {
+  const Expression e =
+      Expression::parse("device.ray_query && (${res} > 2 || !device.ray_query) && scene.has_sky");
+  EXPECT_EQ(e.identifiers(), (std::vector<std::string>{"device.ray_query", "scene.has_sky"}));
+}
+
 }  // namespace
 }  // namespace voxgi::graph

@@ -85,6 +85,11 @@ inline Registry make_registry() {
   add_type(r, "test.fill", {}, {slot("buf", kBuffer, Access::StorageWrite, kStageCompute)});
   add_type(r, "test.use_buffer", {slot("buf", kBuffer, Access::UniformRead, kStageCompute)},
            {slot("dst", kImages, Access::StorageWrite, kStageCompute)});
+  // vkCmdDispatchIndirect with arguments another pass wrote.
+  add_type(r, "test.indirect_dispatch",
+           {slot("args", kBuffer, Access::IndirectRead, kStageCompute),
+            slot("data", kBuffer, Access::StorageRead, kStageCompute, true)},
+           {slot("dst", kImages, Access::StorageWrite, kStageCompute)});
   return r;
 }
 

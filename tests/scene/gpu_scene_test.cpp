@@ -6,6 +6,8 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/shader_compiler.hpp"
 #include "engine/scene/builtin_scenes.hpp"
+#include "engine/scene/bvh.hpp"
+#include "engine/scene/gpu_bvh.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene_builder.hpp"
 #include "tests/gpu/gpu_test_env.hpp"
@@ -258,6 +260,38 @@ void main() {
   values[18] = t.w;
 }
 )";
+
+// The BVH service: built once on first use, the same object for every caller, refit when an
+// instance moved, with the nodes a CPU refit of the same tree gives.
+TEST_F(GpuSceneTest, BvhIsBuiltOnceAndRefitWhenInstancesMove) {
+  Scene scene = make_builtin_scene("cornell");
+  GpuScene gpu(context(), scene);
+  EXPECT_FALSE(gpu.has_bvh());
+  const GpuBvh& first = gpu.bvh(scene);
+  EXPECT_TRUE(gpu.has_bvh());
+  EXPECT_EQ(&gpu.bvh(scene), &first);
+  Bvh expected = Bvh::build(scene);
+  ASSERT_EQ(first.node_count(), expected.nodes().size());
+  const std::vector<GpuBvhNode> built = read_back<GpuBvhNode>(first.nodes(), first.node_count());
+
+  int block = -1;
+  for (size_t i = 0; i < scene.nodes.size(); ++i) {
+    if (scene.nodes[i].name == "tall_block") block = static_cast<int>(i);
+  }
+  ASSERT_GE(block, 0);
+  scene.nodes[size_t(block)].translation += glm::vec3(-0.12f, 0.0f, -0.1f);
+  scene.update_transforms();
+  const GpuBvh& refit = gpu.bvh(scene);
+  EXPECT_EQ(&refit, &first);
+  expected.refit(scene);
+  const std::vector<GpuBvhNode> nodes = read_back<GpuBvhNode>(refit.nodes(), refit.node_count());
+  ASSERT_EQ(nodes.size(), expected.nodes().size());
+  EXPECT_NE(std::memcmp(nodes.data(), built.data(), nodes.size() * sizeof(GpuBvhNode)), 0);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    EXPECT_EQ(nodes[i].bounds_min, expected.nodes()[i].bounds_min) << i;
+    EXPECT_EQ(nodes[i].bounds_max, expected.nodes()[i].bounds_max) << i;
+  }
+}
 
 TEST_F(GpuSceneTest, ShadersSeeTheSameData) {
   SceneBuilder b("shader");

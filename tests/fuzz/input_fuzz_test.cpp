@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,7 +29,13 @@ namespace voxgi::test {
 namespace {
 
 const std::filesystem::path kRepo = VOXGI_SOURCE_DIR;
-constexpr int kMutationsPerSeed = 4000;
+// VOXGI_FUZZ_MUTATIONS runs longer locally (docs/inputs.md).
+int mutations_per_seed() {
+  const char* text = std::getenv("VOXGI_FUZZ_MUTATIONS");
+  const int count = text ? std::atoi(text) : 0;
+  return count > 0 ? count : 4000;
+}
+const int kMutationsPerSeed = mutations_per_seed();
 
 std::string read(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

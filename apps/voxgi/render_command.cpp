@@ -147,7 +147,8 @@ int render_command(const std::vector<std::string>& argv) {
     input.lights_changed = frame == 0 || moved;
     input.geometry_changed = frame == 0 || moved;
     executor.render(input);
-    report.add_frame(executor.timings(), graph::barrier_count(executor.frame_barriers()));
+    report.add_frame(executor.timings(), graph::barrier_count(executor.frame_barriers()),
+                     executor.frame_gpu_ms());
   }
 
   for (const auto& [name, resource] : compiled.outputs) {

@@ -16,11 +16,17 @@ namespace voxgi::cli {
 using runtime::median;
 
 void TimingsReport::add_frame(const std::vector<graph::Executor::PassTiming>& frame,
-                              size_t barriers) {
+                              size_t barriers, double frame_gpu_ms) {
   barriers_per_frame_.push_back(barriers);
   if (frames_seen_ == 0) first_frame_ = frame;
   if (frames_seen_++ < warmup_frames_) return;
   frames_.push_back(frame);
+  if (frame_gpu_ms > 0.0) {
+    double passes = 0.0;
+    for (const graph::Executor::PassTiming& t : frame) passes += t.gpu_ms;
+    frame_gpu_ms_.push_back(frame_gpu_ms);
+    between_passes_gpu_ms_.push_back(std::max(0.0, frame_gpu_ms - passes));
+  }
 }
 
 std::vector<TimingsReport::PassSummary> TimingsReport::summary() const {
@@ -95,6 +101,10 @@ void TimingsReport::write_json(const std::filesystem::path& path, const std::str
   doc["barriers_per_frame"] = barriers_per_frame_;
   doc["total_gpu_ms"] = total_gpu;
   doc["total_cpu_ms"] = total_cpu;
+  // The whole frame by its own timestamps, and what it spent between passes (barriers and
+  // layout transitions), medians over the measured frames.
+  doc["frame_gpu_ms"] = median(frame_gpu_ms_);
+  doc["between_passes_gpu_ms"] = median(between_passes_gpu_ms_);
 
   runtime::write_file_atomically(path, doc.dump(2) + "\n");
 }

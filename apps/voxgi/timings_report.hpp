@@ -13,8 +13,10 @@ class TimingsReport {
  public:
   explicit TimingsReport(uint32_t warmup_frames) : warmup_frames_(warmup_frames) {}
 
-  // `barriers`: the graph barriers the frame recorded (graph::barrier_count).
-  void add_frame(const std::vector<graph::Executor::PassTiming>& frame, size_t barriers);
+  // `barriers`: the graph barriers the frame recorded (graph::barrier_count); `frame_gpu_ms`:
+  // the whole frame's GPU time (Executor::frame_gpu_ms).
+  void add_frame(const std::vector<graph::Executor::PassTiming>& frame, size_t barriers,
+                 double frame_gpu_ms = 0.0);
 
   struct PassSummary {
     std::string pass, type;
@@ -38,6 +40,8 @@ class TimingsReport {
   std::vector<std::vector<graph::Executor::PassTiming>> frames_;
   std::vector<graph::Executor::PassTiming> first_frame_;  // measured or not
   std::vector<size_t> barriers_per_frame_;                // every frame, warm-up included
+  std::vector<double> frame_gpu_ms_;                      // measured frames
+  std::vector<double> between_passes_gpu_ms_;             // frame minus its passes
 };
 
 }  // namespace voxgi::cli

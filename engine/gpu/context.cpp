@@ -149,6 +149,11 @@ void Context::create_instance(const ContextOptions& options) {
   if (debug_utils_) {
     set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
         vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
+    begin_label_ = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
+    end_label_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
+    if (!begin_label_ || !end_label_) begin_label_ = nullptr, end_label_ = nullptr;
     if (validation) {
       auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
           vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
@@ -536,6 +541,17 @@ std::vector<std::string> Context::list_devices() {
   }
   vkDestroyInstance(instance, nullptr);
   return lines;
+}
+
+void Context::begin_label(VkCommandBuffer cmd, const std::string& name) const {
+  if (!begin_label_) return;
+  VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+  label.pLabelName = name.c_str();
+  begin_label_(cmd, &label);
+}
+
+void Context::end_label(VkCommandBuffer cmd) const {
+  if (end_label_) end_label_(cmd);
 }
 
 }  // namespace voxgi::gpu

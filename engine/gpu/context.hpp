@@ -60,6 +60,10 @@ class Context {
   const DeviceFeatures& features() const { return features_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   bool has_debug_utils() const { return debug_utils_; }
+  // A named region of a command buffer for capture tools (VK_EXT_debug_utils); nothing where
+  // the extension is absent. Every begin_label needs its end_label in the same buffer.
+  void begin_label(VkCommandBuffer cmd, const std::string& name) const;
+  void end_label(VkCommandBuffer cmd) const;
 
   Allocator& allocator() { return *allocator_; }
 
@@ -104,6 +108,8 @@ class Context {
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   bool debug_utils_ = false;
+  PFN_vkCmdBeginDebugUtilsLabelEXT begin_label_ = nullptr;
+  PFN_vkCmdEndDebugUtilsLabelEXT end_label_ = nullptr;
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
 
   VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;

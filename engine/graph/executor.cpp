@@ -466,8 +466,11 @@ void Executor::render(const FrameInput& input) {
   gpu::check(vkBeginCommandBuffer(cmd_, &begin), "vkBeginCommandBuffer");
   std::vector<PassTiming> timings;
   std::vector<std::pair<uint32_t, uint32_t>> queries;
+  uint32_t frame_begin_query = 0;
+  uint32_t frame_end_query = 0;
   try {
     timestamps_->reset(cmd_);
+    frame_begin_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
     if (first_frame_) record_initialisation(cmd_);
     record_barriers(cmd_, barriers.frame_start);
     for (size_t s = 0; s < passes_.size(); ++s) {
@@ -476,6 +479,8 @@ void Executor::render(const FrameInput& input) {
       record_barriers(cmd_, barriers.passes[s]);
       PassTiming timing{pass.name, pass.type, 0.0, 0.0, skips[s]};
       PassContext ctx(*live.impl);
+      // A label per pass, so that capture tools show the graph's pass names.
+      context_.begin_label(cmd_, pass.name + " (" + pass.type + ")");
       const uint32_t begin_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
       if (timing.skipped.empty()) {
         live.impl->cmd = cmd_;
@@ -501,10 +506,12 @@ void Executor::render(const FrameInput& input) {
         }
       }
       const uint32_t end_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+      context_.end_label(cmd_);
       queries.emplace_back(begin_query, end_query);
       timings.push_back(std::move(timing));
     }
     record_barriers(cmd_, barriers.frame_end);
+    frame_end_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
   } catch (...) {
     vkEndCommandBuffer(cmd_);
     *sync_ = sync_before;
@@ -529,6 +536,10 @@ void Executor::render(const FrameInput& input) {
       if (b < values.size() && e < values.size())
         timings[s].gpu_ms = timestamps_->milliseconds(values[b], values[e]);
     }
+    frame_gpu_ms_ =
+        frame_begin_query < values.size() && frame_end_query < values.size()
+            ? timestamps_->milliseconds(values[frame_begin_query], values[frame_end_query])
+            : 0.0;
   }
   timings_ = std::move(timings);
   frame_barriers_ = std::move(barriers);

@@ -58,6 +58,10 @@ class Executor {
     std::string skipped;  // the pass's skip_reason(), empty when it ran
   };
   const std::vector<PassTiming>& timings() const { return timings_; }
+  // GPU time of the whole last frame, from before its first barrier to after its last (0 when
+  // the device has no timestamps). Minus the passes' own times it is what the frame spent
+  // between passes: barriers, layout transitions and the timestamps themselves.
+  double frame_gpu_ms() const { return frame_gpu_ms_; }
   // The graph's barriers the last render() recorded (the first frame's initialisation aside).
   const FrameBarriers& frame_barriers() const { return frame_barriers_; }
 
@@ -115,6 +119,7 @@ class Executor {
   bool first_frame_ = true;
   bool rendered_ = false;
   std::vector<PassTiming> timings_;
+  double frame_gpu_ms_ = 0.0;
   glm::vec3 scene_min_{0.0f}, scene_max_{0.0f};
   float light_count_ = 0.0f;
 };

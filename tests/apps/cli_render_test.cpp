@@ -95,6 +95,14 @@ TEST_F(VoxgiCli, RendersTheCornellBoxWithTimings) {
       EXPECT_GE(entry.at(field).get<double>(), 0.0) << schedule[i].first << "." << field;
     }
   }
+  // The whole frame's own timestamps hold every pass and what lies between them.
+  ASSERT_TRUE(timings.at("frame_gpu_ms").is_number());
+  ASSERT_TRUE(timings.at("between_passes_gpu_ms").is_number());
+  if (timings.at("total_gpu_ms").get<double>() > 0.0) {
+    EXPECT_GE(timings.at("frame_gpu_ms").get<double>(),
+              0.999 * timings.at("total_gpu_ms").get<double>());
+    EXPECT_GE(timings.at("between_passes_gpu_ms").get<double>(), 0.0);
+  }
 }
 
 TEST_F(VoxgiCli, UnsupportedGltfExtensionWarnsAndRenders) {

@@ -273,6 +273,8 @@ class BenchRun {
     r.warmup_frames = spec_.warmup_frames;
     r.frames = spec_.frames;
     r.times = summarize_frames(run.measured);
+    r.gpu_memory_bytes = compiled.total_bytes;
+    r.gpu_memory_unshared_bytes = compiled.total_bytes_unshared;
     r.full = image::compare_images(run.outputs.at("linear"), reference.linear);
     if (run.outputs.count("indirect") && reference.indirect) {
       r.indirect = image::compare_images(run.outputs.at("indirect"), *reference.indirect);

@@ -277,7 +277,9 @@ json to_json(const BenchResults& results) {
          {"same_bounce", same_bounce_json(r.same_bounce)},
          {"images",
           {{"image", r.image_png}, {"reference", r.reference_png}, {"heat_map", r.heat_map_png}}},
-         {"wall_seconds", r.wall_seconds}});
+         {"wall_seconds", r.wall_seconds},
+         {"gpu_memory_bytes", r.gpu_memory_bytes},
+         {"gpu_memory_unshared_bytes", r.gpu_memory_unshared_bytes}});
   }
   doc["results"] = list;
   return doc;
@@ -323,6 +325,8 @@ BenchResults results_from_json(const json& doc, const std::string& file) {
     r.warmup_frames = static_cast<uint32_t>(read.count(item, "warmup_frames", where));
     r.frames = static_cast<uint32_t>(read.count(item, "frames", where));
     r.times.gpu_total_ms = read.spread(item, "gpu_ms", where);
+    r.gpu_memory_bytes = item.value("gpu_memory_bytes", uint64_t{0});
+    r.gpu_memory_unshared_bytes = item.value("gpu_memory_unshared_bytes", uint64_t{0});
     r.times.cpu_total_ms = read.spread(item, "cpu_ms", where);
     const json& passes = read.at(item, "passes", where);
     if (!passes.is_array()) read.fail(where + "passes", "expected an array");
@@ -378,7 +382,7 @@ std::string results_csv(const BenchResults& results) {
          "same_bounce_rel_mse,same_bounce_ssim_luminance,same_bounce_hdr_flip,"
          "same_bounce_luminance_bias,full_indirect_rel_mse,full_indirect_ssim_luminance,"
          "full_indirect_hdr_flip,full_indirect_luminance_bias,missing_indirect_fraction,"
-         "same_bounce_reference_key\n";
+         "same_bounce_reference_key,gpu_memory_bytes\n";
   for (const ConfigResult& r : results.results) {
     std::string overrides;
     for (const auto& [k, v] : r.overrides)
@@ -418,6 +422,7 @@ std::string results_csv(const BenchResults& results) {
     } else {
       out << ",,,,,,,,,,,,";
     }
+    out << ',' << r.gpu_memory_bytes;
     out << '\n';
   }
   return out.str();

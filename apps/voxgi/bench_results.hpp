@@ -83,6 +83,10 @@ struct ConfigResult {
   // Relative to the output folder.
   std::string image_png, reference_png, heat_map_png;
   double wall_seconds = 0.0;
+  // Device memory of the graph's resources (compiled plan, transients shared), and without
+  // any sharing; 0 in results written before it was recorded.
+  uint64_t gpu_memory_bytes = 0;
+  uint64_t gpu_memory_unshared_bytes = 0;
 };
 
 struct BenchResults {

@@ -122,7 +122,8 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
     md << "\n";
   }
   md << "\nGPU times come from timestamps around each pass, over the measured frames after the "
-        "warm-up. Errors compare the linear image (and the `indirect` output, when both the "
+        "warm-up; GPU MiB is the memory of the graph's resources (transients shared). Errors "
+        "compare the linear image (and the `indirect` output, when both the "
         "graph and the reference have one) with the reference: relMSE is the mean of "
         "(a - b)^2 / (b^2 + 0.01), SSIM is on compressed luminance, FLIP is the mean HDR-FLIP "
         "(0: indistinguishable, 1: green against blue), bias is the relative difference of mean "
@@ -169,8 +170,8 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
     md << "![GPU time per pass](charts/" << stem << "-pass-times.svg)\n\n";
 
     md << "| id | technique | settings | GPU ms | p10–p90 | relMSE | RMSE | SSIM | FLIP | bias | "
-          "indirect relMSE | non-finite |\n";
-    md << "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+          "indirect relMSE | non-finite | GPU MiB |\n";
+    md << "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const ConfigResult* r : group.results) {
       const Spread& t = r->times.gpu_total_ms;
       md << "| " << r->id << " | " << cell(r->technique) << " | " << cell(settings_of(*r)) << " | "
@@ -181,7 +182,9 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
          << metric_cell(r->full, &image::ImageMetrics::hdr_flip) << " | "
          << metric_cell(r->full, &image::ImageMetrics::luminance_bias) << " | "
          << metric_cell(r->indirect, &image::ImageMetrics::rel_mse) << " | "
-         << (r->full ? std::to_string(r->full->non_finite_pixels) : "—") << " |\n";
+         << (r->full ? std::to_string(r->full->non_finite_pixels) : "—") << " | "
+         << (r->gpu_memory_bytes ? report_number(double(r->gpu_memory_bytes) / (1 << 20)) : "—")
+         << " |\n";
     }
     if (std::any_of(group.results.begin(), group.results.end(),
                     [](const ConfigResult* r) { return r->same_bounce.has_value(); })) {

@@ -130,8 +130,10 @@ TEST_F(VoxgiBench, TinyBenchWritesEveryOutputAndTheReportAgreesWithResults) {
     const std::vector<std::string> cells =
         split_cells(report.substr(at, report.find('\n', at) - at));
     // id | technique | settings | GPU ms | p10–p90 | relMSE | RMSE | SSIM | FLIP | bias |
-    // indirect | nf
-    ASSERT_EQ(cells.size(), 12u) << report.substr(at, 200);
+    // indirect | nf | GPU MiB
+    ASSERT_EQ(cells.size(), 13u) << report.substr(at, 200);
+    ASSERT_GT(item["gpu_memory_bytes"].get<uint64_t>(), 0u);
+    EXPECT_TRUE(same_number(cells[12], item["gpu_memory_bytes"].get<double>() / (1 << 20)));
     EXPECT_EQ(cells[1], "ambient");
     EXPECT_NE(cells[2].find("ambient.radiance=" +
                             item["overrides"]["ambient.radiance"].get<std::string>()),

@@ -304,6 +304,8 @@ void Context::create_device(const ContextOptions& options) {
   info.ppEnabledExtensionNames = extensions.data();
   check(vkCreateDevice(physical_device_, &info, nullptr, &device_),
         ("vkCreateDevice on " + device_name_).c_str());
+  pipeline_cache_ =
+      std::make_unique<PipelineCacheFile>(device_, properties_, options.pipeline_cache_dir);
   vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
   load_extension_functions(instance_);
 
@@ -352,6 +354,7 @@ void Context::release() {
     immediate_fence_ = VK_NULL_HANDLE;
     immediate_pool_ = command_pool_ = VK_NULL_HANDLE;
     allocator_.reset();
+    pipeline_cache_.reset();  // written to disk here
     vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;
   }

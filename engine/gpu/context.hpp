@@ -14,6 +14,7 @@
 
 #include "engine/gpu/device_features.hpp"
 #include "engine/gpu/memory.hpp"
+#include "engine/gpu/pipeline_cache.hpp"
 
 namespace voxgi::gpu {
 
@@ -25,6 +26,8 @@ struct ContextOptions {
   std::string device;
   std::vector<const char*> instance_extensions;  // extra, e.g. for a window surface
   std::vector<const char*> device_extensions;    // extra, e.g. VK_KHR_swapchain
+  // Where the pipeline cache lives between runs (PipelineCacheFile); "" keeps it in memory.
+  std::filesystem::path pipeline_cache_dir = PipelineCacheFile::default_dir();
 };
 
 // Every linear kind also filters linearly between mips (so textureLod works on mip chains);
@@ -60,6 +63,14 @@ class Context {
   const DeviceFeatures& features() const { return features_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   bool has_debug_utils() const { return debug_utils_; }
+  // Every pipeline is created through it; saved to disk when the context is released.
+  VkPipelineCache pipeline_cache() const {
+    return pipeline_cache_ ? pipeline_cache_->handle() : VK_NULL_HANDLE;
+  }
+  // The file it is kept in ("" when in memory only).
+  std::filesystem::path pipeline_cache_path() const {
+    return pipeline_cache_ ? pipeline_cache_->path() : std::filesystem::path();
+  }
   // A named region of a command buffer for capture tools (VK_EXT_debug_utils); nothing where
   // the extension is absent. Every begin_label needs its end_label in the same buffer.
   void begin_label(VkCommandBuffer cmd, const std::string& name) const;
@@ -108,6 +119,7 @@ class Context {
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   bool debug_utils_ = false;
+  std::unique_ptr<PipelineCacheFile> pipeline_cache_;
   PFN_vkCmdBeginDebugUtilsLabelEXT begin_label_ = nullptr;
   PFN_vkCmdEndDebugUtilsLabelEXT end_label_ = nullptr;
   PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;

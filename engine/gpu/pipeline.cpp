@@ -149,7 +149,8 @@ ComputePipeline::ComputePipeline(Context& context, const std::vector<uint32_t>& 
   info.stage.module = modules.modules[0];
   info.stage.pName = "main";
   info.layout = layout_.handle();
-  check(vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_),
+  check(vkCreateComputePipelines(context.device(), context.pipeline_cache(), 1, &info, nullptr,
+                                 &pipeline_),
         ("vkCreateComputePipelines for \"" + name_ + "\"").c_str());
   context.set_debug_name(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline_), name_);
 }
@@ -309,7 +310,8 @@ GraphicsPipeline::GraphicsPipeline(Context& context, const GraphicsPipelineDesc&
   info.pColorBlendState = &color_blend;
   info.pDynamicState = &dynamic_state;
   info.layout = layout_.handle();
-  check(vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_),
+  check(vkCreateGraphicsPipelines(context.device(), context.pipeline_cache(), 1, &info, nullptr,
+                                  &pipeline_),
         ("vkCreateGraphicsPipelines for \"" + name_ + "\"").c_str());
   context.set_debug_name(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline_), name_);
 }

@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -121,6 +125,34 @@ TEST_F(ContextTest, DeviceChosenByNameSubstringCaseInsensitive) {
   options.device = upper;
   gpu::Context second(options);
   EXPECT_EQ(second.device_name(), name);
+}
+
+// The pipeline cache is written when a context is released and read by the next one for the
+// same device and driver; a file of another driver or garbage is ignored, not handed over.
+TEST_F(ContextTest, PipelineCacheIsWrittenAndReadBack) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("voxgi_pipeline_cache_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  gpu::ContextOptions options;
+  options.validation = true;
+  options.pipeline_cache_dir = dir;
+  std::filesystem::path file;
+  {
+    gpu::Context first(options);
+    ASSERT_NE(first.pipeline_cache(), VK_NULL_HANDLE);
+    file = dir / std::filesystem::path(first.pipeline_cache_path()).filename();
+  }
+  ASSERT_TRUE(std::filesystem::exists(file)) << file;
+  std::ifstream in(file, std::ios::binary);
+  VkPipelineCacheHeaderVersionOne header{};
+  in.read(reinterpret_cast<char*>(&header), sizeof header);
+  EXPECT_EQ(header.headerVersion, VK_PIPELINE_CACHE_HEADER_VERSION_ONE);
+  EXPECT_EQ(header.vendorID, context().properties().vendorID);
+  EXPECT_EQ(header.deviceID, context().properties().deviceID);
+  { gpu::Context second(options); }  // reads it back (validation on)
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << std::string(100, 'x');
+  { gpu::Context third(options); }  // garbage: starts empty
+  std::filesystem::remove_all(dir);
 }
 
 TEST(ErrorTest, CheckNamesTheResultAndWhatFailed) {

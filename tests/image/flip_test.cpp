@@ -2,6 +2,7 @@
 // largest colour difference, symmetry, exposure invariance) on small synthetic images.
 
 #include "engine/image/flip.hpp"
+#include "tests/image/filled_image.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,20 +12,6 @@
 
 namespace voxgi::image {
 namespace {
-
-ImageRGBA32F filled(uint32_t w, uint32_t h, float r, float g, float b) {
-  ImageRGBA32F image(w, h);
-  for (uint32_t y = 0; y < h; ++y) {
-    for (uint32_t x = 0; x < w; ++x) {
-      float* p = image.at(x, y);
-      p[0] = r;
-      p[1] = g;
-      p[2] = b;
-      p[3] = 1.0f;
-    }
-  }
-  return image;
-}
 
 // A lit room-like HDR image: a smooth gradient with a bright square and a checker, so that
 // colour, edges and points all differ between the variants below. `shift` moves the pattern.

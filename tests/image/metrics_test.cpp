@@ -7,23 +7,10 @@
 
 #include "engine/image/error_map.hpp"
 #include "engine/image/metrics.hpp"
+#include "tests/image/filled_image.hpp"
 
 namespace voxgi::image {
 namespace {
-
-ImageRGBA32F filled(uint32_t w, uint32_t h, float r, float g, float b) {
-  ImageRGBA32F image(w, h);
-  for (uint32_t y = 0; y < h; ++y) {
-    for (uint32_t x = 0; x < w; ++x) {
-      float* p = image.at(x, y);
-      p[0] = r;
-      p[1] = g;
-      p[2] = b;
-      p[3] = 1.0f;
-    }
-  }
-  return image;
-}
 
 TEST(ImageMetrics, IdenticalImagesHaveNoError) {
   const ImageRGBA32F a = filled(16, 16, 0.2f, 0.5f, 3.0f);

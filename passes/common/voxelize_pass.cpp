@@ -489,7 +489,9 @@ void register_voxelize(graph::Registry& registry) {
        graph::kStageCompute,
        {VK_FORMAT_R16G16B16A16_SFLOAT},
        false,
-       "xyz: averaged world normal (length <= 1, zero where faces cancel), w: 1 + d/4 where occupied (d: surface plane offset from the centre along the normal, voxels; lib/voxel_normal.glsl), 0 empty"},
+       "xyz: averaged world normal (length <= 1, zero where faces cancel), w: 1 + d/4 where "
+       "occupied (d: surface plane offset from the centre along the normal, voxels; "
+       "lib/voxel_normal.glsl), 0 empty"},
       {"emission",
        graph::kinds(ResourceKind::Clipmap),
        Access::StorageReadWrite,

@@ -146,8 +146,7 @@ TEST_P(BounceConvergenceTest, RepeatedBouncesConvergeLikeAContraction) {
   const double gain = (means[1] - means[0]) / rho;  // g: the gather's share of the walls
   std::cout << "  gather gain g = " << gain << ", limit Le/(1-rho g) = " << 1.0 / (1.0 - rho * gain)
             << "\n";
-  EXPECT_GT(gain, anisotropic ? 0.7 : 0.2)
-      << "the first bounce gathers too little of a closed box";
+  EXPECT_GT(gain, anisotropic ? 0.7 : 0.2) << "the first bounce gathers too little of a closed box";
   EXPECT_LT(gain, 1.0);
   // A linear contraction makes the sequence geometric: with q the mean increment ratio, the
   // result after 5 bounces is within q^5 of Le + (first increment) / (1 - q).

@@ -57,8 +57,7 @@ glm::vec4 decode_filtered(glm::vec4 stored) {
   const float tau = std::max(stored.a, 0.0f);
   if (!(tau > 1e-7f)) return glm::vec4(0.0f);
   const float a = 1.0f - std::exp(-tau);
-  return glm::vec4(glm::max(glm::vec3(stored), glm::vec3(0.0f)) * (kMaxOpticalDepth / tau) * a,
-                   a);
+  return glm::vec4(glm::max(glm::vec3(stored), glm::vec3(0.0f)) * (kMaxOpticalDepth / tau) * a, a);
 }
 
 // volumes[v][mip]: texels of the whole stacked image at that mip.

@@ -341,9 +341,12 @@ class Loader {
         used.push_back(ext);
       }
     }
+    // The file says it cannot be read correctly without these (glTF 2.0, 3.12): refuse it.
     if (!required.empty()) {
-      warn("extensionsRequired: unsupported extensions " + join(required) +
-           " (loaded without them; the result may look wrong)");
+      fail("extensionsRequired",
+           "unsupported extension" + std::string(required.size() > 1 ? "s " : " ") +
+               join(required) + ", without which the file cannot be read correctly (supported: " +
+               join(std::vector<std::string>(supported.begin(), supported.end())) + ")");
     }
     if (!used.empty()) warn("extensionsUsed: unsupported extensions " + join(used) + " ignored");
   }

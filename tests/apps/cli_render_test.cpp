@@ -105,7 +105,7 @@ TEST_F(VoxgiCli, RendersTheCornellBoxWithTimings) {
   }
 }
 
-TEST_F(VoxgiCli, UnsupportedGltfExtensionWarnsAndRenders) {
+TEST_F(VoxgiCli, UnsupportedGltfExtensionWarnsWhenUsedAndIsRefusedWhenRequired) {
   GltfWriter writer;
   nlohmann::json primitive = writer.triangle();
   primitive["material"] = 0;
@@ -114,14 +114,22 @@ TEST_F(VoxgiCli, UnsupportedGltfExtensionWarnsAndRenders) {
       {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.8, 0.8, 1.0}}}},
         {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}}});
   writer.doc["extensionsUsed"] = {"KHR_materials_transmission"};
-  writer.doc["extensionsRequired"] = {"KHR_materials_transmission"};
   writer.write_gltf(dir_ / "glass.gltf");
 
   const ProcessResult r = render({"--scene", "glass.gltf", "--out", "glass"});
   ASSERT_TRUE(exited_with(r, 0));
-  EXPECT_TRUE(stderr_has(
-      r, {"voxgi: warning: glass.gltf: extensionsRequired:", "KHR_materials_transmission"}));
+  EXPECT_TRUE(
+      stderr_has(r, {"voxgi: warning: glass.gltf: extensionsUsed:", "KHR_materials_transmission"}));
   expect_png(dir_ / "glass.png", 64, 64);
+
+  // The same extension required by the file: refused, and nothing written.
+  writer.doc["extensionsRequired"] = {"KHR_materials_transmission"};
+  writer.write_gltf(dir_ / "required.gltf");
+  const ProcessResult refused = render({"--scene", "required.gltf", "--out", "required"});
+  ASSERT_TRUE(exited_with(refused, 1));
+  EXPECT_TRUE(stderr_has(refused, {"required.gltf: extensionsRequired: unsupported extension",
+                                   "KHR_materials_transmission"}));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "required.png"));
 }
 
 TEST_F(VoxgiCli, UnknownDeviceListsTheAvailableDevices) {

@@ -131,7 +131,6 @@ TEST_F(GltfLoader, UnsupportedFeaturesBecomeWarnings) {
   points["mode"] = 0;
   w.add_mesh_node(points);
   w.doc["extensionsUsed"] = {"KHR_materials_transmission"};
-  w.doc["extensionsRequired"] = {"KHR_materials_transmission"};
   w.doc["cameras"] = {{{"type", "orthographic"},
                        {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0.1}, {"zfar", 10}}}}};
   w.add_node({{"camera", 0}});
@@ -151,6 +150,15 @@ TEST_F(GltfLoader, UnsupportedFeaturesBecomeWarnings) {
   EXPECT_EQ(scene.cameras.size(), 0u);
   EXPECT_EQ(scene.materials[0].base_color_tex, -1);
   EXPECT_EQ(scene.features().triangle_count, 1u);
+
+  // Required by the file: refused, naming the extension.
+  w.doc["extensionsRequired"] = {"KHR_materials_transmission"};
+  std::ofstream(dir_ / "unsupported.gltf") << w.doc.dump();
+  const std::string message = load_error(dir_ / "unsupported.gltf");
+  EXPECT_TRUE(contains(message, (dir_ / "unsupported.gltf").string() +
+                                    ": extensionsRequired: unsupported extension "
+                                    "KHR_materials_transmission"))
+      << message;
 }
 
 TEST_F(GltfLoader, TexturesExpandToRgbaAndSplitByColourSpace) {

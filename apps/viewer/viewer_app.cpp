@@ -163,6 +163,8 @@ bool ViewerApp::build(size_t index, bool reread_file) {
       settings.extra_outputs[kInspectOutput] = inspect_;
       settings.alias_transients = false;  // what is inspected must not share memory
     }
+    // Editing a fragment the graph includes reloads it too.
+    for (const std::string& fragment : desc.included_files) watcher_.watch_file(fragment);
     auto fresh = std::make_unique<runtime::GraphInstance>(*runtime_, std::move(desc), settings);
     slot.instance = std::move(fresh);
     slot.error.clear();
@@ -233,7 +235,11 @@ void ViewerApp::check_files() {
   for (const fs::path& file : changed) {
     bool is_graph = false;
     for (size_t i = 0; i < slots_.size(); ++i) {
-      if (slots_[i].file == file) {
+      const std::vector<std::string> none;
+      const std::vector<std::string>& fragments =
+          slots_[i].instance ? slots_[i].instance->desc().included_files : none;
+      if (slots_[i].file == file ||
+          std::find(fragments.begin(), fragments.end(), file.string()) != fragments.end()) {
         is_graph = true;
         if (std::find(graphs_changed.begin(), graphs_changed.end(), i) == graphs_changed.end())
           graphs_changed.push_back(i);

@@ -10,6 +10,7 @@
 
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/device_features.hpp"
+#include "engine/graph/compose.hpp"
 #include "engine/graph/expression.hpp"
 #include "engine/graph/resource_plan.hpp"
 
@@ -122,6 +123,13 @@ std::string quoted_list(const std::vector<std::string>& names) {
   return text;
 }
 
+// Where `declared` is, said from `from`: "line 9" in the same file, else "file:line:col".
+std::string where(const SourceLoc& declared, const SourceLoc& from) {
+  if (declared.file == from.file && declared.included_from == from.included_from)
+    return "line " + std::to_string(declared.line);
+  return format_location(declared);
+}
+
 class Compiler {
  public:
   Compiler(const GraphDesc& desc, const Registry& registry, const CompileOptions& options)
@@ -135,6 +143,7 @@ class Compiler {
     graph_.full_barriers = options_.full_barriers;
     resolve_device_features();
     resolve_parameters();
+    expand_repeats();
     resolve_resources();
     resolve_passes();
     apply_pass_overrides();
@@ -253,6 +262,47 @@ class Compiler {
       return std::nullopt;
     }
     return static_cast<uint32_t>(whole);
+  }
+
+  // ---- repeats ----------------------------------------------------------------------------
+  // The graph's passes with every repeat block replaced by its copies, now that parameters
+  // (and so the counts) are known.
+  void expand_repeats() { expand_into(desc_.passes, passes_, 0); }
+
+  void expand_into(const std::vector<PassDesc>& list, std::vector<PassDesc>& out, int depth) {
+    for (const PassDesc& pd : list) {
+      if (!pd.repeat) {
+        out.push_back(pd);
+        continue;
+      }
+      const RepeatDesc& r = *pd.repeat;
+      if (depth >= kMaxIncludeDepth) {
+        diags_.error(r.loc, {}, "repeat",
+                     "repeats nested more than " + std::to_string(kMaxIncludeDepth) + " deep");
+        continue;
+      }
+      ExpressionEnv env;
+      env.params = graph_.parameters;
+      env.identifiers = options_.scene_features;
+      env.identifier_kind = "name";
+      env.identifier_help = "a repeat count may use scene features and ${parameters}";
+      const std::optional<double> count = evaluate(r.count, {}, "repeat", env);
+      if (!count) continue;
+      if (*count < 0 || *count > kMaxRepeatCount || std::floor(*count) != *count) {
+        diags_.error(r.count.loc, {}, "repeat",
+                     "repeat count '" + r.count.text + "' evaluates to " + format_number(*count) +
+                         ", expected a whole number from 0 to " + std::to_string(kMaxRepeatCount));
+        continue;
+      }
+      for (int i = 0; i < static_cast<int>(*count); ++i) {
+        const std::map<std::string, json::Value> index{
+            {r.index, json::Value::make_number(r.from + i, r.loc)}};
+        std::vector<json::Value> items;
+        for (const json::Value& item : r.passes)
+          items.push_back(substitute_arguments(item, index, repeat_indices(item), diags_));
+        expand_into(parse_pass_list(items, "repeat.passes", diags_), out, depth + 1);
+      }
+    }
   }
 
   // ---- resources ------------------------------------------------------------------------
@@ -461,7 +511,7 @@ class Compiler {
     std::map<std::string, const PassDesc*> first_by_name;
     std::vector<std::string> types;
     for (const PassTypeInfo* info : registry_.all()) types.push_back(info->type);
-    for (const PassDesc& pd : desc_.passes) {
+    for (const PassDesc& pd : passes_) {
       PassWork w;
       w.desc = &pd;
       bool unique = !pd.name.empty();
@@ -469,8 +519,8 @@ class Compiler {
         auto [it, inserted] = first_by_name.emplace(pd.name, &pd);
         if (!inserted) {
           diags_.error(pd.name_loc, pd.name, "name",
-                       "duplicate pass name (first defined at line " +
-                           std::to_string(it->second->name_loc.line) + ")");
+                       "duplicate pass name (first defined at " +
+                           where(it->second->name_loc, pd.name_loc) + ")");
           unique = false;
         }
       }
@@ -766,7 +816,7 @@ class Compiler {
                      "pass type '" + w.desc->type +
                          "' may skip frames whose inputs did not change and keep what it wrote "
                          "earlier, but resource '" +
-                         r.info.name + "' (line " + std::to_string(r.loc.line) +
+                         r.info.name + "' (" + where(r.loc, b.loc) +
                          ") is transient, so it would be undefined then: mark it "
                          "\"persistent\": true");
       }
@@ -874,7 +924,7 @@ class Compiler {
         // Counted from the file, so that a mistake in a writer's binding is reported once,
         // not again as a missing write.
         bool written = false;
-        for (const PassDesc& other : desc_.passes) {
+        for (const PassDesc& other : passes_) {
           for (const BindingDesc& ob : other.outputs)
             written = written || ob.resource == r.info.name;
         }
@@ -1119,6 +1169,7 @@ class Compiler {
   }
 
   const GraphDesc& desc_;
+  std::vector<PassDesc> passes_;  // desc_.passes with repeats expanded
   const Registry& registry_;
   const CompileOptions& options_;
   DiagnosticList diags_;

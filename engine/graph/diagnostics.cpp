@@ -11,20 +11,22 @@ Diagnostic message_only(std::string message, std::string hint) {
   return d;
 }
 
+std::string format_location(const SourceLoc& loc) {
+  std::string out = loc.file;
+  if (loc.line > 0) {
+    out += ':';
+    out += std::to_string(loc.line);
+    if (loc.column > 0) {
+      out += ':';
+      out += std::to_string(loc.column);
+    }
+  }
+  return out;
+}
+
 std::string format(const Diagnostic& d) {
   std::string out;
-  if (!d.loc.file.empty()) {
-    out += d.loc.file;
-    if (d.loc.line > 0) {
-      out += ':';
-      out += std::to_string(d.loc.line);
-      if (d.loc.column > 0) {
-        out += ':';
-        out += std::to_string(d.loc.column);
-      }
-    }
-    out += ": ";
-  }
+  if (!d.loc.file.empty()) out += format_location(d.loc) + ": ";
   out += "error: ";
   if (!d.pass.empty()) out += "pass '" + d.pass + "' ";
   if (!d.field.empty()) out += "field '" + d.field + "'";
@@ -34,6 +36,7 @@ std::string format(const Diagnostic& d) {
   }
   out += d.message;
   if (!d.hint.empty()) out += " (did you mean '" + d.hint + "'?)";
+  for (const std::string& from : d.loc.included_from) out += "\n  included from " + from;
   return out;
 }
 

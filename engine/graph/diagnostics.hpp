@@ -13,7 +13,13 @@ struct SourceLoc {
   std::string file;
   int line = 0;
   int column = 0;
+  // For a location inside a graph fragment: where it was included from, innermost first
+  // ("graphs/vct.json:40:7"), one entry per level of inclusion.
+  std::vector<std::string> included_from;
 };
+
+// "file:line:col" (as much of it as is known).
+std::string format_location(const SourceLoc& loc);
 
 struct Diagnostic {
   SourceLoc loc;
@@ -26,7 +32,8 @@ struct Diagnostic {
 // A diagnostic with just a message; the catcher adds where it happened.
 Diagnostic message_only(std::string message, std::string hint = {});
 
-// "file:line:col: error: pass 'p' field 'f': message (did you mean 'x'?)"
+// "file:line:col: error: pass 'p' field 'f': message (did you mean 'x'?)", followed by one
+// "  included from file:line:col" line per level when the location is inside a fragment.
 std::string format(const Diagnostic& d);
 
 class GraphError : public std::runtime_error {

@@ -116,7 +116,9 @@ Json barrier_json(const CompiledGraph& g, const Barrier& b) {
 }
 
 Json loc_json(const SourceLoc& loc) {
-  return Json{{"file", loc.file}, {"line", loc.line}, {"column", loc.column}};
+  Json j{{"file", loc.file}, {"line", loc.line}, {"column", loc.column}};
+  if (!loc.included_from.empty()) j["included_from"] = loc.included_from;
+  return j;
 }
 
 // The frame of a static scene: every pass that may skip does, right after a frame in which
@@ -313,6 +315,14 @@ Json desc_to_json(const GraphDesc& d) {
   }
   j["passes"] = Json::array();
   for (const PassDesc& p : d.passes) {
+    if (p.repeat) {
+      j["passes"].push_back(Json{{"repeat", p.repeat->count.text},
+                                 {"index", p.repeat->index},
+                                 {"from", p.repeat->from},
+                                 {"passes", p.repeat->passes.size()},
+                                 {"loc", loc_json(p.loc)}});
+      continue;
+    }
     Json pass{{"name", p.name}, {"type", p.type}, {"when", p.when}, {"loc", loc_json(p.loc)}};
     for (const auto& [section, list] : {std::pair{"in", &p.inputs}, std::pair{"out", &p.outputs}}) {
       pass[section] = Json::object();

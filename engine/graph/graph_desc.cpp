@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "engine/graph/compose.hpp"
 #include "engine/graph/input_file.hpp"
 
 namespace voxgi::graph {
@@ -17,11 +18,34 @@ const ResourceDesc* GraphDesc::find_resource(std::string_view resource_name) con
   return nullptr;
 }
 
+namespace {
+
+void add_family(const std::string& type, std::set<std::string>& names) {
+  const size_t dot = type.find('.');
+  if (dot != std::string::npos && dot > 0) names.insert(type.substr(0, dot));
+}
+
+// The types written in a repeat's passes (and nested repeats'), before expansion.
+void add_repeat_families(const std::vector<json::Value>& items, std::set<std::string>& names) {
+  for (const json::Value& item : items) {
+    if (!item.is_object()) continue;
+    if (const json::Value* t = item.find("type"); t && t->is_string())
+      add_family(t->as_string(), names);
+    if (const json::Value* body = item.find("passes"); body && body->is_array())
+      add_repeat_families(body->items(), names);
+  }
+}
+
+}  // namespace
+
 std::vector<std::string> GraphDesc::families() const {
   std::set<std::string> names;
   for (const PassDesc& p : passes) {
-    const size_t dot = p.type.find('.');
-    if (dot != std::string::npos && dot > 0) names.insert(p.type.substr(0, dot));
+    if (p.repeat) {
+      add_repeat_families(p.repeat->passes, names);
+    } else {
+      add_family(p.type, names);
+    }
   }
   return {names.begin(), names.end()};
 }
@@ -206,9 +230,41 @@ class DescParser {
     }
   }
 
-  void parse_pass(const Value& v, size_t index, GraphDesc& desc) {
-    const std::string field = "passes[" + std::to_string(index) + "]";
+  void parse_repeat(const Value& v, const std::string& field, std::vector<PassDesc>& list) {
+    check_keys(v, keys({"repeat", "index", "from", "passes", "doc"}), {}, field + ".");
+    auto repeat = std::make_shared<RepeatDesc>();
+    repeat->loc = v.loc();
+    repeat->count = expr_field(*v.find("repeat"), field, "repeat");
+    if (const Value* i = v.find("index")) {
+      if (expect(*i, Value::Kind::String, {}, field + ".index", "a name string"))
+        repeat->index = i->as_string();
+    }
+    if (const Value* f = v.find("from")) {
+      if (!f->is_number() || f->as_number() != std::floor(f->as_number()) ||
+          std::fabs(f->as_number()) > 1e6) {
+        diags_.error(f->loc(), {}, field + ".from", "expected a whole number");
+      } else {
+        repeat->from = static_cast<int>(f->as_number());
+      }
+    }
+    if (const Value* ps = v.find("passes")) {
+      if (expect(*ps, Value::Kind::Array, {}, field + ".passes", "an array of passes"))
+        repeat->passes = ps->items();
+    } else {
+      diags_.error(v.loc(), {}, field + ".passes", "missing field 'passes'");
+    }
+    PassDesc p;
+    p.loc = p.name_loc = p.type_loc = p.when_loc = v.loc();
+    p.repeat = std::move(repeat);
+    list.push_back(std::move(p));
+  }
+
+  void parse_pass(const Value& v, const std::string& field, std::vector<PassDesc>& list) {
     if (!expect(v, Value::Kind::Object, {}, field, "a pass object")) return;
+    if (v.find("repeat")) {
+      parse_repeat(v, field, list);
+      return;
+    }
     PassDesc p;
     p.loc = v.loc();
     p.name_loc = p.type_loc = p.when_loc = v.loc();
@@ -250,7 +306,7 @@ class DescParser {
       if (expect(*d, Value::Kind::String, owner, prefix + "doc", "a string"))
         p.doc = d->as_string();
     }
-    desc.passes.push_back(std::move(p));
+    list.push_back(std::move(p));
   }
 
   void parse_outputs(const Value& v, GraphDesc& desc) {
@@ -268,11 +324,21 @@ class DescParser {
 
 }  // namespace
 
+std::vector<PassDesc> parse_pass_list(const std::vector<json::Value>& items,
+                                      const std::string& field, DiagnosticList& diags) {
+  std::vector<PassDesc> passes;
+  DescParser parser(diags);
+  for (size_t i = 0; i < items.size(); ++i)
+    parser.parse_pass(items[i], field + "[" + std::to_string(i) + "]", passes);
+  return passes;
+}
+
 GraphDesc parse_graph(std::string_view text, std::string file_name) {
-  const json::Value root = json::parse(text, file_name);
-  GraphDesc desc;
-  desc.file = std::move(file_name);
   DiagnosticList diags;
+  GraphDesc desc;
+  const json::Value root =
+      compose_includes(json::parse(text, file_name), file_name, diags, &desc.included_files);
+  desc.file = std::move(file_name);
   DescParser parser(diags);
   if (!root.is_object()) {
     diags.error(root.loc(), {}, {},
@@ -299,7 +365,8 @@ GraphDesc parse_graph(std::string_view text, std::string file_name) {
   }
   if (const Value* ps = root.find("passes")) {
     if (parser.expect(*ps, Value::Kind::Array, {}, "passes", "an array of passes")) {
-      for (size_t i = 0; i < ps->items().size(); ++i) parser.parse_pass(ps->items()[i], i, desc);
+      for (size_t i = 0; i < ps->items().size(); ++i)
+        parser.parse_pass(ps->items()[i], "passes[" + std::to_string(i) + "]", desc.passes);
     }
   } else {
     diags.error(root.loc(), {}, "passes", "missing field 'passes'");

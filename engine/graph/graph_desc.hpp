@@ -3,6 +3,7 @@
 // that the compiler can point at it.
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -53,7 +54,21 @@ struct ParamSetting {
   json::Value value;
 };
 
+// { "repeat": count, "index": "k", "from": 1, "passes": [...] } in a pass list: its passes
+// once per k = from .. from + count - 1, with "{{k}}" replaced in their strings. The count is
+// an expression over graph parameters and scene features; the compiler expands the repeat
+// once --set overrides are known (compose.hpp).
+struct RepeatDesc {
+  ExprField count;
+  std::string index = "index";
+  int from = 1;
+  std::vector<json::Value> passes;  // as written, placeholders unfilled
+  SourceLoc loc;
+};
+
 struct PassDesc {
+  // Set for a repeat block (then no other field is): the compiler expands it into passes.
+  std::shared_ptr<const RepeatDesc> repeat;
   std::string name;
   SourceLoc loc;  // of the pass object
   SourceLoc name_loc;
@@ -103,6 +118,7 @@ struct GraphDesc {
   std::vector<PassDesc> passes;  // in file order
   std::vector<OutputDesc> outputs;
   IndirectDesc indirect;
+  std::vector<std::string> included_files;  // the fragments it was composed from
 
   const ResourceDesc* find_resource(std::string_view name) const;
   // The pass families named by pass types "family.pass", sorted, each once.
@@ -110,8 +126,14 @@ struct GraphDesc {
 };
 
 // Throw GraphError listing every structural problem found (wrong JSON kinds, unknown keys,
-// missing names); semantic checks are the compiler's.
+// missing names); semantic checks are the compiler's. Includes are resolved here (relative to
+// `file_name`'s folder, then the shipped graphs folder); repeats are left to the compiler.
 GraphDesc parse_graph(std::string_view text, std::string file_name);
+
+// The passes of a pass list (an expanded repeat's, say), parsed as parse_graph parses the
+// graph's own; `field` names the list in messages ("passes").
+std::vector<PassDesc> parse_pass_list(const std::vector<json::Value>& items,
+                                      const std::string& field, DiagnosticList& diags);
 GraphDesc load_graph_file(const std::filesystem::path& path);
 
 }  // namespace voxgi::graph

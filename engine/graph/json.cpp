@@ -109,7 +109,9 @@ namespace {
 // Recursive descent over the text; line and column are tracked as it advances.
 class Parser {
  public:
-  Parser(std::string_view text, const std::string& file) : text_(text), file_(file) {}
+  Parser(std::string_view text, const std::string& file,
+         const std::vector<std::string>& included_from)
+      : text_(text), file_(file), included_from_(included_from) {}
 
   Value parse_document() {
     skip_space();
@@ -125,7 +127,7 @@ class Parser {
 
   bool at_end() const { return pos_ >= text_.size(); }
   char peek() const { return at_end() ? '\0' : text_[pos_]; }
-  SourceLoc here() const { return SourceLoc{file_, line_, column_}; }
+  SourceLoc here() const { return SourceLoc{file_, line_, column_, included_from_}; }
 
   void advance() {
     if (text_[pos_] == '\n') {
@@ -375,6 +377,7 @@ class Parser {
 
   std::string_view text_;
   const std::string& file_;
+  const std::vector<std::string>& included_from_;
   size_t pos_ = 0;
   int line_ = 1;
   int column_ = 1;
@@ -382,8 +385,9 @@ class Parser {
 
 }  // namespace
 
-Value parse(std::string_view text, const std::string& file_name) {
-  return Parser(text, file_name).parse_document();
+Value parse(std::string_view text, const std::string& file_name,
+            const std::vector<std::string>& included_from) {
+  return Parser(text, file_name, included_from).parse_document();
 }
 
 }  // namespace voxgi::graph::json

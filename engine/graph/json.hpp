@@ -62,7 +62,9 @@ struct Member {
 
 const char* kind_name(Value::Kind kind);
 
-// Throws GraphError with one diagnostic "file:line:col: error: <what was expected>".
-Value parse(std::string_view text, const std::string& file_name);
+// Throws GraphError with one diagnostic "file:line:col: error: <what was expected>". Every
+// location gets `included_from` (for a fragment: where it was included, innermost first).
+Value parse(std::string_view text, const std::string& file_name,
+            const std::vector<std::string>& included_from = {});
 
 }  // namespace voxgi::graph::json

@@ -1,5 +1,7 @@
 #include "engine/runtime/file_watcher.hpp"
 
+#include <algorithm>
+
 namespace voxgi::runtime {
 
 namespace fs = std::filesystem;
@@ -18,6 +20,7 @@ FileWatcher::Stamp FileWatcher::stamp(const fs::path& file) {
 }
 
 void FileWatcher::watch_file(const fs::path& file) {
+  if (std::find(files_.begin(), files_.end(), file) != files_.end()) return;
   files_.push_back(file);
   stamps_[file] = stamp(file);
 }

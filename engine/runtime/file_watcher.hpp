@@ -12,7 +12,7 @@ namespace voxgi::runtime {
 
 class FileWatcher {
  public:
-  // A file to watch (it may not exist yet: its appearance counts as a change).
+  // A file to watch (it may not exist yet: its appearance counts as a change); once.
   void watch_file(const std::filesystem::path& file);
   // Every regular file under `folder`, recursively, including files added later.
   void watch_tree(const std::filesystem::path& folder);

@@ -80,17 +80,25 @@ TEST_F(VoxgiCli, GraphSyntaxErrorHasFileLineAndColumn) {
 }
 
 TEST_F(VoxgiCli, UnknownPassTypeSuggestsTheClosestType) {
-  std::string text = default_graph_text();
-  const size_t at = text.find("\"common.gbuffer\"");
-  ASSERT_NE(at, std::string::npos) << "graphs/default.json no longer uses common.gbuffer";
-  text.replace(at, 16, "\"common.gbufer\"");
-  write_text(dir_ / "typo.json", text);
+  // The typo is in a copy of the foundation fragment next to the graph, which the graph's
+  // include finds before the shipped one: the error names the fragment and the include.
+  std::string fragment = foundation_fragment_text();
+  const size_t at = fragment.find("\"common.gbuffer\"");
+  ASSERT_NE(at, std::string::npos) << "graphs/common/foundation.json no longer uses common.gbuffer";
+  fragment.replace(at, 16, "\"common.gbufer\"");
+  std::filesystem::create_directories(dir_ / "common");
+  write_text(dir_ / "common" / "foundation.json", fragment);
+  const std::string graph = default_graph_text();
+  write_text(dir_ / "typo.json", graph);
 
   const ProcessResult r = render({"--graph", "typo.json"});
   EXPECT_TRUE(exited_with(r, kError));
-  const std::string location = "typo.json:" + std::to_string(line_of(text, "common.gbufer")) + ":";
+  const std::string location =
+      "common/foundation.json:" + std::to_string(line_of(fragment, "common.gbufer")) + ":";
   EXPECT_TRUE(stderr_has(r, {location, "field 'type'", "unknown pass type 'common.gbufer'",
-                             "did you mean 'common.gbuffer'?"}));
+                             "did you mean 'common.gbuffer'?",
+                             "\n  included from typo.json:" +
+                                 std::to_string(line_of(graph, "common/foundation.json")) + ":"}));
   EXPECT_TRUE(failed_before_rendering(r));
 }
 
@@ -123,24 +131,27 @@ std::string location_of(const std::string& file, const std::string& text, const 
 // A `when` on a device feature: misspelt, it is located and the known names listed; without
 // --device every feature reads as absent and `graph explain` says which conditions that decided.
 TEST_F(VoxgiCli, GraphCheckReadsDeviceFeaturesOnlyFromANamedDevice) {
-  std::string text = default_graph_text();
+  // The conditions are edited in a copy of the foundation fragment next to the graph.
+  std::string text = foundation_fragment_text();
   const std::string lights = "\"when\": \"scene.has_lights\"";
-  ASSERT_NE(text.find(lights), std::string::npos) << "graphs/default.json changed";
+  ASSERT_NE(text.find(lights), std::string::npos) << "graphs/common/foundation.json changed";
+  std::filesystem::create_directories(dir_ / "common");
+  write_text(dir_ / "graph.json", default_graph_text());
   std::string misspelt = text;
   misspelt.replace(misspelt.find(lights), lights.size(), "\"when\": \"device.ray_querry\"");
-  write_text(dir_ / "misspelt.json", misspelt);
-  const ProcessResult bad = voxgi({"graph", "check", "misspelt.json"});
+  write_text(dir_ / "common" / "foundation.json", misspelt);
+  const ProcessResult bad = voxgi({"graph", "check", "graph.json"});
   EXPECT_TRUE(exited_with(bad, kError));
-  EXPECT_TRUE(
-      stderr_has(bad, {location_of("misspelt.json", misspelt, "\"when\"", "device.ray_querry") +
-                           ": error: pass 'shadows' field 'when'",
-                       "unknown device feature 'device.ray_querry' (known: ", "device.ray_query, ",
-                       "did you mean 'device.ray_query'?"}));
+  EXPECT_TRUE(stderr_has(
+      bad, {location_of("common/foundation.json", misspelt, "\"when\"", "device.ray_querry") +
+                ": error: pass 'shadows' field 'when'",
+            "unknown device feature 'device.ray_querry' (known: ", "device.ray_query, ",
+            "did you mean 'device.ray_query'?"}));
 
   text.replace(text.find(lights), lights.size(),
                "\"when\": \"scene.has_lights && device.timestamps\"");
-  write_text(dir_ / "device.json", text);
-  const ProcessResult none = voxgi({"graph", "explain", "device.json"});
+  write_text(dir_ / "common" / "foundation.json", text);
+  const ProcessResult none = voxgi({"graph", "explain", "graph.json"});
   EXPECT_TRUE(exited_with(none, 0));
   EXPECT_TRUE(stdout_has(
       none, {"device features (no device: every feature reads as absent; --device D queries one)",
@@ -148,7 +159,7 @@ TEST_F(VoxgiCli, GraphCheckReadsDeviceFeaturesOnlyFromANamedDevice) {
              "device.timestamps): pass culled",
              "(compiled without a device: device features read as absent)"}));
   if (voxgi({"devices"}).exit_code != 0) return;  // no Vulkan device to name here
-  const ProcessResult with = voxgi({"graph", "explain", "device.json", "--device", "0"});
+  const ProcessResult with = voxgi({"graph", "explain", "graph.json", "--device", "0"});
   EXPECT_TRUE(exited_with(with, 0));
   EXPECT_TRUE(stdout_has(with, {"device features (of '"}));
 }
@@ -157,17 +168,33 @@ std::string vct_graph_text() {
   return read_text(std::filesystem::path(VOXGI_SOURCE_DIR) / "graphs" / "vct.json");
 }
 
-// graphs/vct.json with the vct.* volumes transient: injection and filtering may skip frames,
-// which would leave them undefined, so the graph is refused before any frame.
-TEST_F(VoxgiCli, GraphCheckRefusesTransientOutputsOfPassesThatMaySkip) {
-  std::string text = vct_graph_text();
+std::string shipped_text(const std::string& relative) {
+  return read_text(std::filesystem::path(VOXGI_SOURCE_DIR) / "graphs" / relative);
+}
+
+// Every `"persistent": true` of a declaration that starts with `prefix` removed.
+std::string without_persistent(std::string text, const std::string& prefix) {
   const std::string persistent = ", \"persistent\": true";
-  for (size_t at = text.find("\"vct."); at != std::string::npos; at = text.find("\"vct.", at + 1)) {
+  for (size_t at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at + 1)) {
     const size_t end = text.find(" }", at);  // "${...}" inside the declaration has no space
     const size_t flag = text.find(persistent, at);
     if (flag < end) text.erase(flag, persistent.size());
   }
+  return text;
+}
+
+// graphs/vct.json with the vct.* volumes transient (the radiance in the graph, the filtered
+// volumes in a copy of their fragment next to it): injection and filtering may skip frames,
+// which would leave them undefined, so the graph is refused before any frame.
+TEST_F(VoxgiCli, GraphCheckRefusesTransientOutputsOfPassesThatMaySkip) {
+  const std::string text = without_persistent(vct_graph_text(), "\"vct.");
+  const std::string volumes =
+      without_persistent(shipped_text("vct/directional_volumes.json"), "\"{{volumes}}.");
+  ASSERT_NE(volumes, shipped_text("vct/directional_volumes.json"));
   write_text(dir_ / "transient.json", text);
+  std::filesystem::create_directories(dir_ / "vct");
+  write_text(dir_ / "vct" / "directional_volumes.json", volumes);
+  const std::string filter = shipped_text("vct/filter.json");
   const ProcessResult r = voxgi({"graph", "check", "transient.json"});
   EXPECT_TRUE(exited_with(r, kError));
   EXPECT_TRUE(stderr_has(
@@ -176,32 +203,39 @@ TEST_F(VoxgiCli, GraphCheckRefusesTransientOutputsOfPassesThatMaySkip) {
           "resource 'vct.radiance' (line " + std::to_string(line_of(text, "\"vct.radiance\":")) +
               ") is transient",
           "mark it \"persistent\": true",
-          location_of("transient.json", text, "\"name\": \"filter\"", "\"vct.pos_x\"") +
-              ": error: pass 'filter' field 'out.pos_x'"}));
+          location_of(
+              (std::filesystem::path(VOXGI_SOURCE_DIR) / "graphs" / "vct" / "filter.json").string(),
+              filter, "\"out\"", "\"{{volumes}}.pos_x\"") +
+              ": error: pass 'filter' field 'out.pos_x'",
+          "resource 'vct.pos_x' (vct/directional_volumes.json:" +
+              std::to_string(line_of(volumes, "\"{{volumes}}.pos_x\":")) + ":"}));
   EXPECT_TRUE(failed_before_rendering(r));
 }
 
 // Half-resolution cone tracing needs its scratch image: found by `graph check`, not at render.
 TEST_F(VoxgiCli, GraphCheckRefusesHalfResolutionWithoutHalfRes) {
-  std::string text = vct_graph_text();
-  const size_t trace = text.find("\"name\": \"cone_trace\"");
-  const std::string full = "\"resolution\": \"full\"";
+  // A copy of the gather fragment without the scratch binding, next to the graph.
+  std::string gather = shipped_text("vct/gather.json");
   const std::string scratch = ",\n               \"half_res\": \"gi.half\"";
-  ASSERT_NE(text.find(full, trace), std::string::npos);
-  ASSERT_NE(text.find(scratch, trace), std::string::npos) << "graphs/vct.json changed";
-  text.replace(text.find(full, trace), full.size(), "\"resolution\": \"half\"");
-  text.erase(text.find(scratch, trace), scratch.size());
+  ASSERT_NE(gather.find(scratch), std::string::npos) << "graphs/vct/gather.json changed";
+  gather.erase(gather.find(scratch), scratch.size());
+  std::filesystem::create_directories(dir_ / "vct");
+  write_text(dir_ / "vct" / "gather.json", gather);
+  std::string text = vct_graph_text();
+  const std::string full = "\"resolution\": \"full\"";
+  ASSERT_NE(text.find(full), std::string::npos) << "graphs/vct.json changed";
+  text.replace(text.find(full), full.size(), "\"resolution\": \"half\"");
   write_text(dir_ / "half.json", text);
   const ProcessResult r = voxgi({"graph", "check", "half.json"});
   EXPECT_TRUE(exited_with(r, kError));
+  // The parameter's value comes from the include's "with", where the error points.
   EXPECT_TRUE(stderr_has(
-      r, {location_of("half.json", text, "\"name\": \"cone_trace\"", "\"half\"") +
-          ": error: pass 'cone_trace' field 'params.resolution': 'half' needs the output slot "
-          "'half_res' bound"}));
+      r, {location_of("vct/gather.json", gather, "\"name\": \"{{name}}\"", "\"{{resolution}}\"") +
+              ": error: pass 'cone_trace' field 'params.resolution': 'half' needs the output slot "
+              "'half_res' bound",
+          "included from half.json:"}));
   // The same through --set, located there.
-  std::string no_scratch = vct_graph_text();
-  no_scratch.erase(no_scratch.find(scratch), scratch.size());
-  write_text(dir_ / "no-scratch.json", no_scratch);
+  write_text(dir_ / "no-scratch.json", vct_graph_text());
   const ProcessResult over =
       voxgi({"graph", "check", "no-scratch.json", "--set", "cone_trace.resolution=half"});
   EXPECT_TRUE(exited_with(over, kError));

@@ -35,6 +35,12 @@ inline std::string default_graph_text() {
   return read_text(std::filesystem::path(VOXGI_SOURCE_DIR) / "graphs" / "default.json");
 }
 
+// The fragment every shipped graph starts from (G-buffer, shadows, direct lighting).
+inline std::string foundation_fragment_text() {
+  return read_text(std::filesystem::path(VOXGI_SOURCE_DIR) / "graphs" / "common" /
+                   "foundation.json");
+}
+
 // 1-based line of the first occurrence of `part` in `text`, 0 when absent.
 inline int line_of(const std::string& text, const std::string& part) {
   const size_t at = text.find(part);

@@ -19,10 +19,11 @@ class CompositeIndirect : public GpuTest {};
 std::filesystem::path graph_with_parts() {
   std::ifstream in(std::filesystem::path(VOXGI_SOURCE_DIR) / "graphs" / "default.json");
   std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  const std::string outputs = "\"outputs\": {";
-  const size_t at = text.rfind(outputs);
-  EXPECT_NE(at, std::string::npos) << "graphs/default.json has no outputs";
-  text.insert(at + outputs.size(), " \"direct\": \"light.direct\", \"ambient\": \"gi.diffuse\",");
+  const size_t end = text.rfind('}');
+  EXPECT_NE(end, std::string::npos) << "graphs/default.json is not an object";
+  // Outputs join those the graph's fragments declare.
+  text.insert(end,
+              ",\n  \"outputs\": { \"direct\": \"light.direct\", \"ambient\": \"gi.diffuse\" }\n");
   const std::filesystem::path file = make_temp_dir("voxgi-composite") / "parts.json";
   std::ofstream(file) << text;
   return file;

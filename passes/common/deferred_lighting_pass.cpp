@@ -13,7 +13,7 @@
 #include "engine/scene/gpu_scene.hpp"
 #include "passes/common/passes.hpp"
 #include "passes/common/shader_helpers.hpp"
-#include "passes/common/shadow_layout.hpp"
+#include "passes/contracts/shadow_data.hpp"
 
 namespace voxgi::passes::common {
 namespace {
@@ -78,7 +78,7 @@ class DeferredLightingPass final : public graph::Pass {
                       static_cast<float>(ctx.number("background")),
                       0.0f};
     if (has_shadows_) {
-      push.shadow_slots = graph::write_shadow_inputs(ctx, writer, 6, 7);
+      push.shadow_slots = contracts::write_shadow_inputs(ctx, writer, 6, 7);
       push.shadows_enabled = ctx.flag("shadows") ? 1u : 0u;
     }
     pipeline_->bind(cmd);

@@ -19,11 +19,13 @@
 #include "engine/scene/scene.hpp"
 #include "passes/common/passes.hpp"
 #include "passes/common/shader_helpers.hpp"
-#include "passes/common/shadow_layout.hpp"
+#include "passes/contracts/shadow_data.hpp"
 
 namespace voxgi::passes::common {
 namespace {
 
+using contracts::kShadowFacesPerLight;
+using contracts::ShadowLight;
 using graph::Access;
 using graph::ResourceKind;
 

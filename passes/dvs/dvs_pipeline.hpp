@@ -27,7 +27,4 @@ VkImageView storage_view(const graph::BoundResource& resource);
 inline constexpr uint32_t kVolumeTile = 4;
 void dispatch_over_volume(VkCommandBuffer cmd, VkExtent3D extent);
 
-// The voxel clipmap info buffer (shaders/lib/voxel_clipmap.glsl): 16 + 16 + 8 * 32 bytes.
-inline constexpr VkDeviceSize kClipmapInfoSize = 288;
-
 }  // namespace voxgi::passes::dvs

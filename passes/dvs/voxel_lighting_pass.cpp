@@ -13,6 +13,8 @@
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
+#include "passes/contracts/shadow_data.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/dvs/dvs_pipeline.hpp"
 #include "passes/dvs/passes.hpp"
 
@@ -102,7 +104,7 @@ class VoxelLightingPass final : public graph::Pass {
     push.shadow_bias = static_cast<float>(ctx.number("shadow_bias"));
     push.max_steps = static_cast<uint32_t>(ctx.integer("shadow_max_steps"));
     if (has_shadow_maps_) {
-      push.shadow_slots = graph::write_shadow_inputs(ctx, writer, 4, 5);
+      push.shadow_slots = contracts::write_shadow_inputs(ctx, writer, 4, 5);
     }
     pipeline_->bind(cmd);
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
@@ -123,10 +125,11 @@ class VoxelLightingPass final : public graph::Pass {
 
 void validate_voxel_lighting(graph::PassCheck& check) {
   const graph::ResourceInfo& info = check.info("clipmap_info");
-  if (info.buffer_size < kClipmapInfoSize) {
-    check.slot_error("clipmap_info",
-                     "buffer '" + info.name + "' holds " + std::to_string(info.buffer_size) +
-                         " bytes, the clipmap info needs " + std::to_string(kClipmapInfoSize));
+  if (info.buffer_size < contracts::kVoxelClipmapInfoBytes) {
+    check.slot_error("clipmap_info", "buffer '" + info.name + "' holds " +
+                                         std::to_string(info.buffer_size) +
+                                         " bytes, the clipmap info needs " +
+                                         std::to_string(contracts::kVoxelClipmapInfoBytes));
   }
   graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission", "direct"});
 }

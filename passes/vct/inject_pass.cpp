@@ -12,6 +12,7 @@
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
+#include "passes/contracts/shadow_data.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -76,7 +77,7 @@ class InjectPass final : public graph::Pass {
     InjectPush push{0, static_cast<float>(ctx.number("normal_offset")),
                     ctx.flag("shadows") ? 1u : 0u, 0.0f};
     if (has_shadows_) {
-      push.shadow_slots = graph::write_shadow_inputs(ctx, writer, 4, 5);
+      push.shadow_slots = contracts::write_shadow_inputs(ctx, writer, 4, 5);
     }
     pipeline_->bind(cmd);
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());

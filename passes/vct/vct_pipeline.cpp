@@ -27,7 +27,7 @@ graph::SlotSpec clipmap_info_input() {
           graph::kStageCompute,
           {},
           false,
-          "VoxelClipmapInfo (lib/voxel_clipmap.glsl) written by the voxelization pass"};
+          "VoxelClipmapInfo (contracts/voxel_clipmap.glsl) written by the voxelization pass"};
 }
 
 graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional,

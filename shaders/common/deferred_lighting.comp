@@ -6,7 +6,7 @@
 #include "lib/common.glsl"
 #include "lib/brdf.glsl"
 #include "lib/scene.glsl"
-#include "lib/shadow_data.glsl"
+#include "contracts/shadow_data.glsl"
 
 #ifndef HAS_SHADOWS
 #define HAS_SHADOWS 0

@@ -6,8 +6,8 @@
 // and the voxel's outgoing radiance becomes direct + albedo / pi * E. Repeated K times, each
 // time after filtering, this is the fixed-point iteration L = L_direct + albedo/pi * E[L], a
 // contraction with gain at most albedo < 1 (docs/dvs.md).
-#include "lib/voxel_normal.glsl"
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_volumes.glsl"
+#include "contracts/voxel_clipmap.glsl"
 #define VCT_VOLUME_SET 0
 #define VCT_VOLUME_BINDING 1
 #include "lib/cone_trace.glsl"
@@ -58,7 +58,7 @@ void main() {
       s.start_distance = pc.start_offset * size;
       s.ao_falloff = 0.0;
       float visibility;
-      // Gather from the voxel's average surface plane (lib/voxel_normal.glsl), with the cone
+      // Gather from the voxel's average surface plane (contracts/voxel_volumes.glsl), with the cone
       // origin normal_offset voxels off the centre as before.
       vec3 unit_n = n * inversesqrt(n_len2);
       float plane = voxel_plane_offset(texelFetch(voxel_normal, texel, 0));

@@ -5,7 +5,7 @@
 // per-voxel bounce). docs/vct.md derives the weights and corrections used here.
 //
 // STORAGE (written by vct.filter, read here)
-//   Every filtered volume is a clipmap with the addressing of lib/voxel_clipmap.glsl (same R,
+//   Every filtered volume is a clipmap with the addressing of contracts/voxel_clipmap.glsl (same R,
 //   L, toroidal origin) and a full mip chain: mip m holds, per level l, R>>m voxels per edge at
 //   z in [l*(R>>m), (l+1)*(R>>m)). Texel m of world voxel w is (w >> m) mod (R >> m).
 //   The optical-depth form of lib/vct_volume_encoding.glsl: a = optical depth tau of one voxel
@@ -22,7 +22,7 @@
 //   the isotropic value in all six.
 //
 // BINDINGS (the includer provides them)
-//   Include lib/voxel_clipmap.glsl first (the clipmap info buffer). Define VCT_VOLUME_SET and
+//   Include contracts/voxel_clipmap.glsl first (the clipmap info buffer). Define VCT_VOLUME_SET and
 //   VCT_VOLUME_BINDING (defaults 0 and 1) and VCT_ANISOTROPIC (default 0); the volumes are
 //   one array binding `sampler3D vct_volumes[1 or 6]`, each combined with a sampler that is
 //   LINEAR, address mode REPEAT (the toroidal wrap in x and y; z is interpolated here by hand

@@ -14,7 +14,7 @@
 #include "lib/vct_volume_encoding.glsl"
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_clipmap.glsl"
 
 #ifndef ANISOTROPIC
 #define ANISOTROPIC 0

@@ -15,7 +15,7 @@
 #include "lib/frame.glsl"
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_clipmap.glsl"
 #define VCT_VOLUME_SET 0
 #define VCT_VOLUME_BINDING 1
 #include "lib/cone_trace.glsl"

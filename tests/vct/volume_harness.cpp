@@ -27,7 +27,7 @@ glm::ivec3 clipmap_texel(const ClipmapInfo& info, glm::ivec3 window, int level) 
 
 ClipmapInfo make_clipmap_info(int resolution, int levels, float base_voxel, glm::vec3 centre,
                               glm::vec3 anchor) {
-  ClipmapInfo info;
+  ClipmapInfo info{};
   info.anchor = glm::vec4(anchor, 0.0f);
   info.dims = glm::uvec4(static_cast<uint32_t>(resolution), static_cast<uint32_t>(levels), 0, 0);
   for (int l = 0; l < levels; ++l) {

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Test probe of lib/cone_trace.glsl: diffuse irradiance + AO at a point with a normal, or the
 // radiance and opacity of one cone.
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_clipmap.glsl"
 #define VCT_VOLUME_BINDING 1
 #include "lib/cone_trace.glsl"
 

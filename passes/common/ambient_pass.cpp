@@ -10,6 +10,7 @@
 #include "engine/graph/pass.hpp"
 #include "passes/common/passes.hpp"
 #include "passes/common/shader_helpers.hpp"
+#include "passes/contracts/gbuffer.hpp"
 
 namespace voxgi::passes::common {
 namespace {
@@ -69,7 +70,7 @@ void register_ambient(graph::Registry& registry) {
   info.inputs = {
       graph::sampled_2d_input("base_color", "G-buffer base colour"),
       graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
-      graph::sampled_2d_input("depth", "G-buffer depth")};
+      graph::sampled_2d_input("depth", "G-buffer depth", false, {contracts::kGbufferDepthFormat})};
   info.outputs = {radiance_output("radiance", "ambient radiance reflected towards the camera")};
   info.params = {
       {"enabled", graph::ParamType::Bool, 1.0, 0.0, 1.0, {}, "switch the ambient term off", true},

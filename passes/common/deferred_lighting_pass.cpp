@@ -13,6 +13,7 @@
 #include "engine/scene/gpu_scene.hpp"
 #include "passes/common/passes.hpp"
 #include "passes/common/shader_helpers.hpp"
+#include "passes/contracts/gbuffer.hpp"
 #include "passes/contracts/shadow_data.hpp"
 
 namespace voxgi::passes::common {
@@ -106,7 +107,7 @@ void register_deferred_lighting(graph::Registry& registry) {
       graph::sampled_2d_input("normal", "G-buffer normal + roughness"),
       graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
       graph::sampled_2d_input("emission", "G-buffer emission"),
-      graph::sampled_2d_input("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}),
+      graph::sampled_2d_input("depth", "G-buffer depth", false, {contracts::kGbufferDepthFormat}),
       graph::sampled_2d_input("shadow_maps", "from common.shadow_maps; unbound: no shadows", true,
                               {VK_FORMAT_D32_SFLOAT}),
       {"shadow_matrices",

@@ -12,6 +12,7 @@
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
+#include "passes/contracts/gbuffer.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -277,7 +278,7 @@ std::vector<graph::SlotSpec> trace_inputs() {
   inputs.push_back(
       graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"));
   inputs.push_back(
-      graph::sampled_2d_input("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}));
+      graph::sampled_2d_input("depth", "G-buffer depth", false, {contracts::kGbufferDepthFormat}));
   return inputs;
 }
 

@@ -1,5 +1,5 @@
 // vct.cone_trace (indirect diffuse + ambient occlusion) and vct.cone_trace_specular (one
-// glossy cone): cone tracing through the filtered volumes (shaders/lib/cone_trace.glsl) per
+// glossy cone): cone tracing through the filtered volumes (shaders/contracts/cone_trace.glsl) per
 // G-buffer pixel, at full resolution or at half resolution followed by a depth- and
 // normal-aware upsample through the graph-provided scratch image `half_res`.
 
@@ -70,7 +70,7 @@ class ConeTracePass final : public graph::Pass {
 
   void setup(graph::PassContext& ctx) override {
     anisotropic_ = bound_filtered_volumes(ctx) == FilteredVolumes::Anisotropic;
-    if (!sampler_) sampler_ = std::make_unique<VolumeSampler>(ctx.gpu());
+    if (!sampler_) sampler_ = std::make_unique<contracts::VolumeSampler>(ctx.gpu());
     half_ = ctx.choice("resolution") == "half";
     has_ao_ = !specular_ && ctx.has("ao");
     has_shadow_ = !specular_ && ctx.has("shadow");
@@ -147,12 +147,12 @@ class ConeTracePass final : public graph::Pass {
       std::vector<VkDescriptorImageInfo> images;
       const VkSampler repeat = sampler_->handle();
       if (anisotropic_) {
-        for (const char* slot : kDirectionalSlots) {
+        for (const char* slot : contracts::kDirectionalSlots) {
           const graph::BoundResource& v = ctx.resource(slot);
           images.push_back({repeat, v.view, v.layout});
         }
       } else {
-        const graph::BoundResource& v = ctx.resource(kFilteredSlot);
+        const graph::BoundResource& v = ctx.resource(contracts::kFilteredSlot);
         images.push_back({repeat, v.view, v.layout});
       }
       writer.image_array(kBindingVolumes, images);
@@ -225,7 +225,7 @@ class ConeTracePass final : public graph::Pass {
   bool half_ = false;
   bool has_ao_ = false;
   bool has_shadow_ = false;
-  std::unique_ptr<VolumeSampler> sampler_;
+  std::unique_ptr<contracts::VolumeSampler> sampler_;
   std::optional<gpu::ComputePipeline> trace_;
   std::optional<gpu::ComputePipeline> shadow_;
   std::optional<gpu::ComputePipeline> upsample_;
@@ -264,12 +264,12 @@ graph::SlotSpec image_output(const char* name, const char* doc, bool optional,
 std::vector<graph::SlotSpec> trace_inputs() {
   std::vector<graph::SlotSpec> inputs = {
       clipmap_info_input(),
-      filtered_input(kFilteredSlot,
+      filtered_input(contracts::kFilteredSlot,
                      "isotropic filtered volume from vct.filter (or bind the six "
                      "directional volumes)")};
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
-  for (size_t i = 0; i < kDirectionalSlots.size(); ++i) {
-    inputs.push_back(filtered_input(kDirectionalSlots[i],
+  for (size_t i = 0; i < contracts::kDirectionalSlots.size(); ++i) {
+    inputs.push_back(filtered_input(contracts::kDirectionalSlots[i],
                                     std::string("directional volume for cones travelling ") +
                                         directions[i] + " from vct.filter (anisotropic)"));
   }

@@ -85,8 +85,8 @@ void main() {
   bool has_normal = n_len >= NORMAL_MIN_LENGTH;
   vec3 n = has_normal ? n_raw / n_len : vec3(0.0);
 
-  // The voxel's surface: its centre moved onto the average surface plane (contracts/voxel_volumes.glsl),
-  // world space (anchor-relative arithmetic first for precision).
+  // The voxel's surface: its centre moved onto the average surface plane
+  // (contracts/voxel_volumes.glsl), world space (anchor-relative arithmetic first for precision).
   float size = voxel_size(level);
   vec3 relative = voxel_level_min(level) + (vec3(window) + 0.5) * size;
   if (has_normal) relative += n * (voxel_plane_offset(normal_occupied) * size);

@@ -225,7 +225,7 @@ std::vector<glm::vec4> VolumeGraph::download(const std::string& resource, uint32
 
 namespace {
 
-// The sampler lib/cone_trace.glsl expects (as passes/vct/vct_pipeline.cpp creates it).
+// The sampler contracts/cone_trace.glsl expects (as passes/vct/vct_pipeline.cpp creates it).
 class ProbeSampler {
  public:
   explicit ProbeSampler(gpu::Context& context) : context_(context) {

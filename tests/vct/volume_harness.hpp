@@ -3,7 +3,7 @@
 // ("vcttest.volumes") uploads CPU clipmap data (clipmap info, albedo, normal, emission,
 // radiance) into the graph's resources, so injection, filtering and cone tracing can be
 // checked against analytic answers without a voxelizer. A probe compute shader
-// (tests/vct/shaders/probe.comp) evaluates lib/cone_trace.glsl at chosen points.
+// (tests/vct/shaders/probe.comp) evaluates contracts/cone_trace.glsl at chosen points.
 
 #include <glm/glm.hpp>
 

@@ -89,13 +89,7 @@ void validate_voxelize(graph::PassCheck& check) {
                                    "; the clipmap needs a power of two of at least 8");
   }
   graph::check_same_clipmap_layout(check, "albedo", {"normal", "emission"});
-  const graph::ResourceInfo& info = check.info("clipmap_info");
-  if (info.buffer_size < contracts::kVoxelClipmapInfoBytes) {
-    check.slot_error("clipmap_info", "buffer '" + info.name + "' holds " +
-                                         std::to_string(info.buffer_size) +
-                                         " bytes; VoxelClipmapInfo needs " +
-                                         std::to_string(contracts::kVoxelClipmapInfoBytes));
-  }
+  contracts::check_clipmap_info_size(check);
   const uint32_t stride = scratch_words_per_voxel(check);
   const graph::ResourceInfo& scratch = check.info("scratch");
   const VkDeviceSize row_bytes = VkDeviceSize(resolution) * stride * 4;

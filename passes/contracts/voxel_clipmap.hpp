@@ -9,6 +9,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "engine/graph/pass.hpp"
+
 namespace voxgi::contracts {
 
 inline constexpr uint32_t kVoxelMaxLevels = 8;  // VOXEL_CLIPMAP_MAX_LEVELS
@@ -30,5 +32,11 @@ static_assert(sizeof(VoxelClipmapLevelInfo) == 32);
 static_assert(offsetof(VoxelClipmapInfo, dims) == 16);
 static_assert(offsetof(VoxelClipmapInfo, levels) == 32);
 static_assert(kVoxelClipmapInfoBytes == 16 + 16 + kVoxelMaxLevels * 32);
+
+// A reader's "clipmap_info" slot: the buffer read as a storage buffer in compute.
+graph::SlotSpec clipmap_info_input();
+// For validate hooks of the writer and the readers: reports slot "clipmap_info" when its
+// buffer is smaller than VoxelClipmapInfo.
+void check_clipmap_info_size(graph::PassCheck& check);
 
 }  // namespace voxgi::contracts

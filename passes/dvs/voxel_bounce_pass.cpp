@@ -12,6 +12,7 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
 #include "passes/contracts/filtered_volumes.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/dvs/dvs_pipeline.hpp"
 #include "passes/dvs/passes.hpp"
 
@@ -117,6 +118,7 @@ graph::SlotSpec filtered_input(const char* name, std::string doc) {
 
 // One isotropic or six directional volumes, of the voxels' layout.
 void validate_voxel_bounce(graph::PassCheck& check) {
+  contracts::check_clipmap_info_size(check);
   int directional = 0;
   for (const char* slot : contracts::kDirectionalSlots) directional += check.has(slot) ? 1 : 0;
   const bool isotropic = check.has(contracts::kFilteredSlot);
@@ -139,7 +141,7 @@ void register_voxel_bounce(graph::Registry& registry) {
       "One indirect diffuse bounce per voxel: hemisphere cones around the voxel normal on the "
       "filtered radiance volume; writes direct + albedo/pi * irradiance";
   info.inputs = {
-      buffer_input("clipmap_info", "voxel.clipmap_info from common.voxelize"),
+      contracts::clipmap_info_input(),
       filtered_input(contracts::kFilteredSlot,
                      "isotropic filtered volume from vct.filter (or bind the six "
                      "directional volumes)"),

@@ -124,13 +124,7 @@ class VoxelLightingPass final : public graph::Pass {
 };
 
 void validate_voxel_lighting(graph::PassCheck& check) {
-  const graph::ResourceInfo& info = check.info("clipmap_info");
-  if (info.buffer_size < contracts::kVoxelClipmapInfoBytes) {
-    check.slot_error("clipmap_info", "buffer '" + info.name + "' holds " +
-                                         std::to_string(info.buffer_size) +
-                                         " bytes, the clipmap info needs " +
-                                         std::to_string(contracts::kVoxelClipmapInfoBytes));
-  }
+  contracts::check_clipmap_info_size(check);
   graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission", "direct"});
 }
 
@@ -143,7 +137,7 @@ void register_voxel_lighting(graph::Registry& registry) {
       "Deferred voxel shading: per-voxel direct lighting (point, spot, directional) with "
       "normal-weighted attenuation, shadow-map or soft voxel-ray occlusion, plus emission";
   info.inputs = {
-      buffer_input("clipmap_info", "voxel.clipmap_info from common.voxelize"),
+      contracts::clipmap_info_input(),
       clipmap_input("albedo", "voxel albedo (rgb) and opacity (a)"),
       clipmap_input("normal", "voxel averaged normal (xyz), occupancy (w)"),
       clipmap_input("emission", "voxel emitted radiance; unbound: none", true),

@@ -13,6 +13,7 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
 #include "passes/contracts/gbuffer.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -232,6 +233,7 @@ class ConeTracePass final : public graph::Pass {
 };
 
 void validate_cone_trace(graph::PassCheck& check) {
+  contracts::check_clipmap_info_size(check);
   check_filtered_volumes_bound(check);
   if (check.choice("resolution") == "half" && !check.has("half_res")) {
     check.param_error("resolution",
@@ -263,7 +265,7 @@ graph::SlotSpec image_output(const char* name, const char* doc, bool optional,
 
 std::vector<graph::SlotSpec> trace_inputs() {
   std::vector<graph::SlotSpec> inputs = {
-      clipmap_info_input(),
+      contracts::clipmap_info_input(),
       filtered_input(contracts::kFilteredSlot,
                      "isotropic filtered volume from vct.filter (or bind the six "
                      "directional volumes)")};

@@ -13,6 +13,7 @@
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -111,6 +112,7 @@ class FilterPass final : public graph::Pass {
 };
 
 void validate_filter(graph::PassCheck& check) {
+  contracts::check_clipmap_info_size(check);
   if (check.choice("mode") == "isotropic") {
     if (!check.has(contracts::kFilteredSlot)) {
       check.param_error("mode", "mode 'isotropic' needs the output slot 'filtered' bound");
@@ -145,7 +147,7 @@ void register_filter(graph::Registry& registry) {
       "Filters the radiance clipmap into the cone tracer's volumes: premultiplied radiance and "
       "opacity with per-level mips, levels kept consistent; isotropic or six anisotropic "
       "directions";
-  info.inputs = {clipmap_info_input(),
+  info.inputs = {contracts::clipmap_info_input(),
                  sampled_clipmap("radiance",
                                  "radiance clipmap (rgb outgoing radiance, a opacity) from "
                                  "vct.inject or dvs.voxel_lighting; only mip 0 is read",

@@ -13,6 +13,7 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
 #include "passes/contracts/shadow_data.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -105,7 +106,7 @@ void register_inject(graph::Registry& registry) {
       "Direct light into the radiance clipmap: albedo/pi x light irradiance x cos x shadow-map "
       "visibility per voxel, plus emission";
   info.inputs = {
-      clipmap_info_input(),
+      contracts::clipmap_info_input(),
       sampled_clipmap("albedo", "voxel albedo (rgb linear) and opacity (a)", false, kFloatRgba),
       sampled_clipmap("normal", "voxel averaged normal (xyz; ~0 where faces cancel)", false,
                       kFloatRgba),
@@ -142,6 +143,7 @@ void register_inject(graph::Registry& registry) {
   };
   info.may_skip = true;
   info.validate = [](graph::PassCheck& check) {
+    contracts::check_clipmap_info_size(check);
     graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission"});
   };
   registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });

@@ -2,16 +2,6 @@
 
 namespace voxgi::passes::vct {
 
-graph::SlotSpec clipmap_info_input() {
-  return {"clipmap_info",
-          graph::kinds(graph::ResourceKind::Buffer),
-          graph::Access::StorageRead,
-          graph::kStageCompute,
-          {},
-          false,
-          "VoxelClipmapInfo (contracts/voxel_clipmap.glsl) written by the voxelization pass"};
-}
-
 graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional,
                                 std::vector<VkFormat> formats) {
   return {name,

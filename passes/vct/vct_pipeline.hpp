@@ -13,7 +13,6 @@
 namespace voxgi::passes::vct {
 
 // Slot declarations (compute stage).
-graph::SlotSpec clipmap_info_input();
 graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional,
                                 std::vector<VkFormat> formats);
 

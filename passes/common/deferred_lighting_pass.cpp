@@ -19,9 +19,6 @@
 namespace voxgi::passes::common {
 namespace {
 
-using graph::Access;
-using graph::ResourceKind;
-
 struct LightingPush {
   uint32_t width;
   uint32_t height;
@@ -108,15 +105,8 @@ void register_deferred_lighting(graph::Registry& registry) {
       graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
       graph::sampled_2d_input("emission", "G-buffer emission"),
       graph::sampled_2d_input("depth", "G-buffer depth", false, {contracts::kGbufferDepthFormat}),
-      graph::sampled_2d_input("shadow_maps", "from common.shadow_maps; unbound: no shadows", true,
-                              {VK_FORMAT_D32_SFLOAT}),
-      {"shadow_matrices",
-       graph::kinds(ResourceKind::Buffer),
-       Access::StorageRead,
-       graph::kStageCompute,
-       {},
-       true,
-       "from common.shadow_maps"},
+      contracts::shadow_maps_input("from common.shadow_maps; unbound: no shadows"),
+      contracts::shadow_matrices_input("from common.shadow_maps"),
   };
   info.outputs = {
       radiance_output("radiance", "direct radiance towards the camera, emission included")};

@@ -221,7 +221,7 @@ void register_shadow_maps(graph::Registry& registry) {
        graph::kinds(ResourceKind::Image2D),
        Access::DepthAttachment,
        graph::kStageFragment,
-       {VK_FORMAT_D32_SFLOAT},
+       {contracts::kShadowMapFormat},
        false,
        "depth array, 6 layers per shadowed light"},
       {"matrices",

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
@@ -15,6 +16,7 @@
 namespace voxgi::contracts {
 
 inline constexpr uint32_t kShadowFacesPerLight = 6;
+inline constexpr VkFormat kShadowMapFormat = VK_FORMAT_D32_SFLOAT;
 
 // std430 record of one light. Matrices are relative to `origin` (clip = view_proj * (p -
 // origin)): a view matrix that carries a large translation loses float precision for scenes
@@ -32,6 +34,11 @@ inline constexpr VkDeviceSize kShadowLightBytes = sizeof(ShadowLight);
 static_assert(kShadowLightBytes == 6 * 64 + 32);
 static_assert(offsetof(ShadowLight, origin) == 6 * 64);
 static_assert(offsetof(ShadowLight, info) == 6 * 64 + 16);
+
+// A reader's optional slots "shadow_maps" (the depth array, sampled) and "shadow_matrices" (the
+// ShadowLight records, a storage buffer), in compute.
+graph::SlotSpec shadow_maps_input(std::string doc);
+graph::SlotSpec shadow_matrices_input(std::string doc);
 
 // Writes the bound slots "shadow_maps" (with the shadow-compare sampler) at `maps_binding` and
 // "shadow_matrices" at `lights_binding`; returns how many lights' shadows both hold.

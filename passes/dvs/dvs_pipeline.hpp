@@ -14,8 +14,6 @@ namespace voxgi::passes::dvs {
 // A clipmap read with texelFetch or a sampler in compute.
 graph::SlotSpec clipmap_input(const char* name, const char* doc, bool optional = false,
                               std::vector<VkFormat> formats = {});
-// A buffer read as a storage buffer in compute (e.g. shadow_matrices).
-graph::SlotSpec buffer_input(const char* name, const char* doc, bool optional = false);
 // An rgba16f clipmap written as a storage image in compute (its mip 0, or the bound mip).
 graph::SlotSpec radiance_volume_output(const char* name, const char* doc, bool optional = false);
 

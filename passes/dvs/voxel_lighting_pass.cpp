@@ -21,9 +21,6 @@
 namespace voxgi::passes::dvs {
 namespace {
 
-using graph::Access;
-using graph::ResourceKind;
-
 enum Occlusion : uint32_t { kOcclusionNone = 0, kOcclusionShadowMap = 1, kOcclusionVoxelRays = 2 };
 
 struct LightingPush {
@@ -141,14 +138,8 @@ void register_voxel_lighting(graph::Registry& registry) {
       clipmap_input("albedo", "voxel albedo (rgb) and opacity (a)"),
       clipmap_input("normal", "voxel averaged normal (xyz), occupancy (w)"),
       clipmap_input("emission", "voxel emitted radiance; unbound: none", true),
-      {"shadow_maps",
-       graph::kinds(ResourceKind::Image2D),
-       Access::Sampled,
-       graph::kStageCompute,
-       {VK_FORMAT_D32_SFLOAT},
-       true,
-       "from common.shadow_maps (occlusion = shadow_map)"},
-      buffer_input("shadow_matrices", "from common.shadow_maps (occlusion = shadow_map)", true),
+      contracts::shadow_maps_input("from common.shadow_maps (occlusion = shadow_map)"),
+      contracts::shadow_matrices_input("from common.shadow_maps (occlusion = shadow_map)"),
   };
   info.outputs = {
       radiance_volume_output("radiance",

@@ -100,11 +100,11 @@ void register_deferred_lighting(graph::Registry& registry) {
       "Direct lighting of the G-buffer by all punctual lights with the glTF BRDF, shadow maps "
       "(PCF) and emission";
   info.inputs = {
-      graph::sampled_2d_input("base_color", "G-buffer base colour"),
-      graph::sampled_2d_input("normal", "G-buffer normal + roughness"),
-      graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
-      graph::sampled_2d_input("emission", "G-buffer emission"),
-      graph::sampled_2d_input("depth", "G-buffer depth", false, {contracts::kGbufferDepthFormat}),
+      contracts::gbuffer_input(contracts::GbufferTarget::BaseColor),
+      contracts::gbuffer_input(contracts::GbufferTarget::Normal),
+      contracts::gbuffer_input(contracts::GbufferTarget::Material),
+      contracts::gbuffer_input(contracts::GbufferTarget::Emission),
+      contracts::gbuffer_input(contracts::GbufferTarget::Depth),
       contracts::shadow_maps_input("from common.shadow_maps; unbound: no shadows"),
       contracts::shadow_matrices_input("from common.shadow_maps"),
   };

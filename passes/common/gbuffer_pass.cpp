@@ -111,11 +111,6 @@ class GbufferPass final : public graph::Pass {
   std::optional<gpu::GraphicsPipeline> double_sided_;
 };
 
-template <size_t N>
-std::vector<VkFormat> formats(const std::array<VkFormat, N>& list) {
-  return {list.begin(), list.end()};
-}
-
 graph::SlotSpec color_target(const char* name, std::vector<VkFormat> formats, const char* doc) {
   return {name,
           graph::kinds(ResourceKind::Image2D),
@@ -134,13 +129,14 @@ void register_gbuffer(graph::Registry& registry) {
   info.doc =
       "Rasterises the scene into a G-buffer (base colour, normal, material, emission, depth)";
   info.outputs = {
-      color_target("base_color", formats(contracts::kGbufferBaseColorFormats),
+      color_target("base_color", contracts::gbuffer_formats(contracts::GbufferTarget::BaseColor),
                    "linear base colour, a = occlusion"),
-      color_target("normal", formats(contracts::kGbufferNormalFormats),
+      color_target("normal", contracts::gbuffer_formats(contracts::GbufferTarget::Normal),
                    "world-space shading normal, w = roughness"),
-      color_target("material", formats(contracts::kGbufferMaterialFormats),
+      color_target("material", contracts::gbuffer_formats(contracts::GbufferTarget::Material),
                    "metallic, roughness, occlusion, coverage"),
-      color_target("emission", formats(contracts::kGbufferEmissionFormats), "emitted radiance"),
+      color_target("emission", contracts::gbuffer_formats(contracts::GbufferTarget::Emission),
+                   "emitted radiance"),
       {"depth",
        graph::kinds(ResourceKind::Image2D),
        Access::DepthAttachment,

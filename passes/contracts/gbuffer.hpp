@@ -6,6 +6,9 @@
 #include <vulkan/vulkan.h>
 
 #include <array>
+#include <vector>
+
+#include "engine/graph/pass.hpp"
 
 namespace voxgi::contracts {
 
@@ -23,5 +26,11 @@ inline constexpr std::array<VkFormat, 2> kGbufferEmissionFormats = {VK_FORMAT_R1
                                                                     VK_FORMAT_R32G32B32A32_SFLOAT};
 // Cleared to 1 (no surface).
 inline constexpr VkFormat kGbufferDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+enum class GbufferTarget { BaseColor, Normal, Material, Emission, Depth };
+std::vector<VkFormat> gbuffer_formats(GbufferTarget target);
+// A reader's slot for one target, named as common.gbuffer names it: sampled in compute, in one
+// of the target's formats.
+graph::SlotSpec gbuffer_input(GbufferTarget target);
 
 }  // namespace voxgi::contracts

@@ -275,12 +275,11 @@ std::vector<graph::SlotSpec> trace_inputs() {
                                     std::string("directional volume for cones travelling ") +
                                         directions[i] + " from vct.filter (anisotropic)"));
   }
-  inputs.push_back(graph::sampled_2d_input("base_color", "G-buffer base colour"));
-  inputs.push_back(graph::sampled_2d_input("normal", "G-buffer normal + roughness"));
-  inputs.push_back(
-      graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"));
-  inputs.push_back(
-      graph::sampled_2d_input("depth", "G-buffer depth", false, {contracts::kGbufferDepthFormat}));
+  for (contracts::GbufferTarget target :
+       {contracts::GbufferTarget::BaseColor, contracts::GbufferTarget::Normal,
+        contracts::GbufferTarget::Material, contracts::GbufferTarget::Depth}) {
+    inputs.push_back(contracts::gbuffer_input(target));
+  }
   return inputs;
 }
 

@@ -1,7 +1,5 @@
 #include "engine/graph/pass_helpers.hpp"
 
-#include <algorithm>
-
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/scene/gpu_scene.hpp"
@@ -74,17 +72,6 @@ void bind_scene_set(const PassContext& ctx, const gpu::ComputePipeline& pipeline
   VkDescriptorSet set = ctx.gpu_scene().descriptor_set();
   vkCmdBindDescriptorSets(ctx.cmd(), VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout(), 1, 1, &set,
                           0, nullptr);
-}
-
-uint32_t write_shadow_inputs(const PassContext& ctx, gpu::DescriptorWriter& writer,
-                             uint32_t maps_binding, uint32_t lights_binding) {
-  const BoundResource& maps = ctx.resource("shadow_maps");
-  const BoundResource& matrices = ctx.resource("shadow_matrices");
-  writer.sampled_image(maps_binding, maps.view, maps.layout,
-                       ctx.gpu().sampler(gpu::SamplerKind::ShadowCompare));
-  writer.storage_buffer(lights_binding, *matrices.buffer);
-  return std::min<uint32_t>(maps.info->array_layers / kShadowFacesPerLight,
-                            static_cast<uint32_t>(matrices.info->buffer_size / kShadowLightBytes));
 }
 
 std::vector<uint64_t> InputVersions::current(const PassContext& ctx) const {

@@ -41,17 +41,6 @@ void check_same_clipmap_layout(PassCheck& check, std::string_view reference,
 // Binds the scene's descriptor set as set 1 of a compute pipeline.
 void bind_scene_set(const PassContext& ctx, const gpu::ComputePipeline& pipeline);
 
-// The shadow data common.shadow_maps writes and lighting passes read
-// (shaders/lib/shadow_data.glsl): light i owns array layers 6i .. 6i+5 of the shadow map image
-// and one 6 * 64 + 32-byte record of the shadow matrices buffer.
-inline constexpr uint32_t kShadowFacesPerLight = 6;
-inline constexpr VkDeviceSize kShadowLightBytes = 6 * 64 + 32;
-
-// Writes the bound slots "shadow_maps" (with the shadow-compare sampler) at `maps_binding` and
-// "shadow_matrices" at `lights_binding`; returns how many lights' shadows both hold.
-uint32_t write_shadow_inputs(const PassContext& ctx, gpu::DescriptorWriter& writer,
-                             uint32_t maps_binding, uint32_t lights_binding);
-
 // Remembers the resource versions (PassContext::resource_version) of a pass's input slots at
 // its last execute(), so that skip_reason() can tell whether any of them has been written
 // since. An unbound optional slot counts as version 0.

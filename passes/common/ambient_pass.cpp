@@ -10,6 +10,7 @@
 #include "engine/graph/pass.hpp"
 #include "passes/common/passes.hpp"
 #include "passes/common/shader_helpers.hpp"
+#include "passes/contracts/gbuffer.hpp"
 
 namespace voxgi::passes::common {
 namespace {
@@ -66,10 +67,9 @@ void register_ambient(graph::Registry& registry) {
   graph::PassTypeInfo info;
   info.type = "common.ambient";
   info.doc = "Constant ambient light (uniform environment radiance), the placeholder for GI";
-  info.inputs = {
-      graph::sampled_2d_input("base_color", "G-buffer base colour"),
-      graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
-      graph::sampled_2d_input("depth", "G-buffer depth")};
+  info.inputs = {contracts::gbuffer_input(contracts::GbufferTarget::BaseColor),
+                 contracts::gbuffer_input(contracts::GbufferTarget::Material),
+                 contracts::gbuffer_input(contracts::GbufferTarget::Depth)};
   info.outputs = {radiance_output("radiance", "ambient radiance reflected towards the camera")};
   info.params = {
       {"enabled", graph::ParamType::Bool, 1.0, 0.0, 1.0, {}, "switch the ambient term off", true},

@@ -13,13 +13,11 @@
 #include "engine/scene/gpu_scene.hpp"
 #include "passes/common/passes.hpp"
 #include "passes/common/shader_helpers.hpp"
-#include "passes/common/shadow_layout.hpp"
+#include "passes/contracts/gbuffer.hpp"
+#include "passes/contracts/shadow_data.hpp"
 
 namespace voxgi::passes::common {
 namespace {
-
-using graph::Access;
-using graph::ResourceKind;
 
 struct LightingPush {
   uint32_t width;
@@ -78,7 +76,7 @@ class DeferredLightingPass final : public graph::Pass {
                       static_cast<float>(ctx.number("background")),
                       0.0f};
     if (has_shadows_) {
-      push.shadow_slots = graph::write_shadow_inputs(ctx, writer, 6, 7);
+      push.shadow_slots = contracts::write_shadow_inputs(ctx, writer, 6, 7);
       push.shadows_enabled = ctx.flag("shadows") ? 1u : 0u;
     }
     pipeline_->bind(cmd);
@@ -102,20 +100,13 @@ void register_deferred_lighting(graph::Registry& registry) {
       "Direct lighting of the G-buffer by all punctual lights with the glTF BRDF, shadow maps "
       "(PCF) and emission";
   info.inputs = {
-      graph::sampled_2d_input("base_color", "G-buffer base colour"),
-      graph::sampled_2d_input("normal", "G-buffer normal + roughness"),
-      graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"),
-      graph::sampled_2d_input("emission", "G-buffer emission"),
-      graph::sampled_2d_input("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}),
-      graph::sampled_2d_input("shadow_maps", "from common.shadow_maps; unbound: no shadows", true,
-                              {VK_FORMAT_D32_SFLOAT}),
-      {"shadow_matrices",
-       graph::kinds(ResourceKind::Buffer),
-       Access::StorageRead,
-       graph::kStageCompute,
-       {},
-       true,
-       "from common.shadow_maps"},
+      contracts::gbuffer_input(contracts::GbufferTarget::BaseColor),
+      contracts::gbuffer_input(contracts::GbufferTarget::Normal),
+      contracts::gbuffer_input(contracts::GbufferTarget::Material),
+      contracts::gbuffer_input(contracts::GbufferTarget::Emission),
+      contracts::gbuffer_input(contracts::GbufferTarget::Depth),
+      contracts::shadow_maps_input("from common.shadow_maps; unbound: no shadows"),
+      contracts::shadow_matrices_input("from common.shadow_maps"),
   };
   info.outputs = {
       radiance_output("radiance", "direct radiance towards the camera, emission included")};

@@ -1,9 +1,6 @@
-// G-buffer: rasterises every scene instance once and stores what deferred shading needs.
-//   base_color: linear base colour (sRGB-encoded storage), a = ambient occlusion
-//   normal:     world-space shading normal, w = perceptual roughness
-//   material:   r = metallic, g = roughness, b = occlusion, a = 1 where geometry was drawn
-//   emission:   emitted radiance (clamped below the float16 maximum)
-//   depth:      hardware depth, 0..1, cleared to 1 (the far plane)
+// G-buffer: rasterises every scene instance once and stores what deferred shading needs, in
+// the encoding of the G-buffer contract (passes/contracts/gbuffer.hpp,
+// shaders/contracts/gbuffer.glsl).
 
 #include <array>
 #include <memory>
@@ -15,6 +12,7 @@
 #include "engine/scene/gpu_scene.hpp"
 #include "passes/common/passes.hpp"
 #include "passes/common/shader_helpers.hpp"
+#include "passes/contracts/gbuffer.hpp"
 
 namespace voxgi::passes::common {
 namespace {
@@ -38,7 +36,8 @@ class GbufferPass final : public graph::Pass {
     desc.depth_write = true;
     desc.depth_compare = VK_COMPARE_OP_LESS;
     desc.front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    for (const char* slot : kColorSlots) desc.color_formats.push_back(ctx.info(slot).format);
+    for (const char* slot : contracts::kGbufferColorSlots)
+      desc.color_formats.push_back(ctx.info(slot).format);
     desc.depth_format = ctx.info("depth").format;
 
     desc.cull = VK_CULL_MODE_BACK_BIT;
@@ -54,9 +53,9 @@ class GbufferPass final : public graph::Pass {
     const uint32_t width = depth_info.extent.width;
     const uint32_t height = depth_info.extent.height;
 
-    std::array<VkRenderingAttachmentInfo, kColorSlots.size()> colors{};
-    for (size_t i = 0; i < kColorSlots.size(); ++i) {
-      const graph::BoundResource& target = ctx.resource(kColorSlots[i]);
+    std::array<VkRenderingAttachmentInfo, contracts::kGbufferColorSlots.size()> colors{};
+    for (size_t i = 0; i < contracts::kGbufferColorSlots.size(); ++i) {
+      const graph::BoundResource& target = ctx.resource(contracts::kGbufferColorSlots[i]);
       colors[i].sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO;
       colors[i].imageView = target.view;
       colors[i].imageLayout = target.layout;
@@ -107,9 +106,6 @@ class GbufferPass final : public graph::Pass {
     vkCmdEndRendering(cmd);
   }
 
-  static constexpr std::array<const char*, 4> kColorSlots = {"base_color", "normal", "material",
-                                                             "emission"};
-
  private:
   std::optional<gpu::GraphicsPipeline> single_sided_;
   std::optional<gpu::GraphicsPipeline> double_sided_;
@@ -132,19 +128,20 @@ void register_gbuffer(graph::Registry& registry) {
   info.type = "common.gbuffer";
   info.doc =
       "Rasterises the scene into a G-buffer (base colour, normal, material, emission, depth)";
-  const std::vector<VkFormat> hdr = {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
   info.outputs = {
-      color_target("base_color", {VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_R16G16B16A16_SFLOAT},
+      color_target("base_color", contracts::gbuffer_formats(contracts::GbufferTarget::BaseColor),
                    "linear base colour, a = occlusion"),
-      color_target("normal", hdr, "world-space shading normal, w = roughness"),
-      color_target("material", {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT},
+      color_target("normal", contracts::gbuffer_formats(contracts::GbufferTarget::Normal),
+                   "world-space shading normal, w = roughness"),
+      color_target("material", contracts::gbuffer_formats(contracts::GbufferTarget::Material),
                    "metallic, roughness, occlusion, coverage"),
-      color_target("emission", hdr, "emitted radiance"),
+      color_target("emission", contracts::gbuffer_formats(contracts::GbufferTarget::Emission),
+                   "emitted radiance"),
       {"depth",
        graph::kinds(ResourceKind::Image2D),
        Access::DepthAttachment,
        graph::kStageFragment,
-       {VK_FORMAT_D32_SFLOAT},
+       {contracts::kGbufferDepthFormat},
        false,
        "depth, cleared to 1"},
   };

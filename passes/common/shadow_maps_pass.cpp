@@ -19,11 +19,13 @@
 #include "engine/scene/scene.hpp"
 #include "passes/common/passes.hpp"
 #include "passes/common/shader_helpers.hpp"
-#include "passes/common/shadow_layout.hpp"
+#include "passes/contracts/shadow_data.hpp"
 
 namespace voxgi::passes::common {
 namespace {
 
+using contracts::kShadowFacesPerLight;
+using contracts::ShadowLight;
 using graph::Access;
 using graph::ResourceKind;
 
@@ -219,7 +221,7 @@ void register_shadow_maps(graph::Registry& registry) {
        graph::kinds(ResourceKind::Image2D),
        Access::DepthAttachment,
        graph::kStageFragment,
-       {VK_FORMAT_D32_SFLOAT},
+       {contracts::kShadowMapFormat},
        false,
        "depth array, 6 layers per shadowed light"},
       {"matrices",

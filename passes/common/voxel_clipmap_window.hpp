@@ -1,7 +1,8 @@
 #pragma once
 // CPU side of the voxel clipmap: where each level's window lies, which boxes of voxels must be
-// revoxelized when windows move or dynamic geometry moves, and the `VoxelClipmapInfo` buffer
-// (shaders/lib/voxel_clipmap.glsl) that tells consumers about it. Plain math, no Vulkan.
+// revoxelized when windows move or dynamic geometry moves. What it tells consumers, the
+// `VoxelClipmapInfo` buffer, is a contract (passes/contracts/voxel_clipmap.hpp). Plain math, no
+// Vulkan.
 
 #include <glm/glm.hpp>
 
@@ -9,20 +10,6 @@
 #include <vector>
 
 namespace voxgi::passes::common {
-
-inline constexpr uint32_t kVoxelMaxLevels = 8;  // VOXEL_CLIPMAP_MAX_LEVELS
-
-// std430 mirror of VoxelClipmapInfo in shaders/lib/voxel_clipmap.glsl.
-struct VoxelClipmapLevelInfo {
-  glm::ivec4 origin_voxel;    // xyz: window min corner in voxels counted from the anchor; w: valid
-  glm::vec4 min_corner_size;  // xyz: window min corner relative to the anchor (m); w: voxel edge
-};
-struct VoxelClipmapInfo {
-  glm::vec4 anchor;
-  glm::uvec4 dims;  // x: R, y: L
-  VoxelClipmapLevelInfo levels[kVoxelMaxLevels];
-};
-static_assert(sizeof(VoxelClipmapInfo) == 288);
 
 // A box of voxels of one level in window coordinates (0..R-1), max exclusive.
 struct VoxelBox {

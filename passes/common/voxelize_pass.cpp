@@ -25,6 +25,8 @@
 #include "passes/common/passes.hpp"
 #include "passes/common/shader_helpers.hpp"
 #include "passes/common/voxel_clipmap_window.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
+#include "passes/contracts/voxel_volumes.hpp"
 
 namespace voxgi::passes::common {
 namespace {
@@ -76,9 +78,9 @@ void validate_voxelize(graph::PassCheck& check) {
   const graph::ResourceInfo& albedo = check.info("albedo");
   const uint32_t resolution = albedo.extent.width;
   const uint32_t levels = albedo.clipmap_levels;
-  if (levels < 1 || levels > kVoxelMaxLevels) {
+  if (levels < 1 || levels > contracts::kVoxelMaxLevels) {
     check.slot_error("albedo", "clipmap '" + albedo.name + "' has " + std::to_string(levels) +
-                                   " levels; 1 to " + std::to_string(kVoxelMaxLevels) +
+                                   " levels; 1 to " + std::to_string(contracts::kVoxelMaxLevels) +
                                    " are supported");
   }
   if (!is_power_of_two(resolution) || resolution < 8) {
@@ -87,13 +89,7 @@ void validate_voxelize(graph::PassCheck& check) {
                                    "; the clipmap needs a power of two of at least 8");
   }
   graph::check_same_clipmap_layout(check, "albedo", {"normal", "emission"});
-  const graph::ResourceInfo& info = check.info("clipmap_info");
-  if (info.buffer_size < sizeof(VoxelClipmapInfo)) {
-    check.slot_error("clipmap_info", "buffer '" + info.name + "' holds " +
-                                         std::to_string(info.buffer_size) +
-                                         " bytes; VoxelClipmapInfo needs " +
-                                         std::to_string(sizeof(VoxelClipmapInfo)));
-  }
+  contracts::check_clipmap_info_size(check);
   const uint32_t stride = scratch_words_per_voxel(check);
   const graph::ResourceInfo& scratch = check.info("scratch");
   const VkDeviceSize row_bytes = VkDeviceSize(resolution) * stride * 4;
@@ -346,7 +342,7 @@ class VoxelizePass final : public graph::Pass {
   }
 
   void write_info(graph::PassContext& ctx, const std::vector<glm::ivec3>& origins) {
-    VoxelClipmapInfo info{};
+    contracts::VoxelClipmapInfo info{};
     info.anchor = glm::vec4(anchor_f_, 0.0f);
     info.dims = glm::uvec4(resolution_, levels_, 0, 0);
     for (uint32_t l = 0; l < levels_; ++l) {
@@ -475,28 +471,28 @@ void register_voxelize(graph::Registry& registry) {
        graph::kStageTransfer,
        {},
        false,
-       "VoxelClipmapInfo (lib/voxel_clipmap.glsl, 288 bytes), written when a window moves"},
+       "VoxelClipmapInfo (contracts/voxel_clipmap.glsl, 288 bytes), written when a window moves"},
       {"albedo",
        graph::kinds(ResourceKind::Clipmap),
        Access::StorageReadWrite,
        graph::kStageCompute,
-       {VK_FORMAT_R8G8B8A8_UNORM},
+       {contracts::kVoxelAlbedoFormat},
        false,
        "rgb: linear diffuse albedo, a: opacity (0 empty)"},
       {"normal",
        graph::kinds(ResourceKind::Clipmap),
        Access::StorageReadWrite,
        graph::kStageCompute,
-       {VK_FORMAT_R16G16B16A16_SFLOAT},
+       {contracts::kVoxelNormalFormat},
        false,
        "xyz: averaged world normal (length <= 1, zero where faces cancel), w: 1 + d/4 where "
        "occupied (d: surface plane offset from the centre along the normal, voxels; "
-       "lib/voxel_normal.glsl), 0 empty"},
+       "contracts/voxel_volumes.glsl), 0 empty"},
       {"emission",
        graph::kinds(ResourceKind::Clipmap),
        Access::StorageReadWrite,
        graph::kStageCompute,
-       {VK_FORMAT_R16G16B16A16_SFLOAT},
+       {contracts::kVoxelEmissionFormat},
        true,
        "rgb: emitted radiance (HDR)"},
       {"scratch",

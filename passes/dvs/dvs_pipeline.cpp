@@ -15,16 +15,6 @@ graph::SlotSpec clipmap_input(const char* name, const char* doc, bool optional,
           doc};
 }
 
-graph::SlotSpec buffer_input(const char* name, const char* doc, bool optional) {
-  return {name,
-          graph::kinds(graph::ResourceKind::Buffer),
-          graph::Access::StorageRead,
-          graph::kStageCompute,
-          {},
-          optional,
-          doc};
-}
-
 graph::SlotSpec radiance_volume_output(const char* name, const char* doc, bool optional) {
   return {name,
           graph::ResourceKind::Clipmap | graph::ResourceKind::Image3D,

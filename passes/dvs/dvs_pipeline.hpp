@@ -14,8 +14,6 @@ namespace voxgi::passes::dvs {
 // A clipmap read with texelFetch or a sampler in compute.
 graph::SlotSpec clipmap_input(const char* name, const char* doc, bool optional = false,
                               std::vector<VkFormat> formats = {});
-// A buffer read as a storage buffer in compute (e.g. voxel.clipmap_info).
-graph::SlotSpec buffer_input(const char* name, const char* doc, bool optional = false);
 // An rgba16f clipmap written as a storage image in compute (its mip 0, or the bound mip).
 graph::SlotSpec radiance_volume_output(const char* name, const char* doc, bool optional = false);
 
@@ -26,8 +24,5 @@ VkImageView storage_view(const graph::BoundResource& resource);
 // Workgroup edge of the family's 3D compute shaders (local size kVolumeTile^3).
 inline constexpr uint32_t kVolumeTile = 4;
 void dispatch_over_volume(VkCommandBuffer cmd, VkExtent3D extent);
-
-// The voxel clipmap info buffer (shaders/lib/voxel_clipmap.glsl): 16 + 16 + 8 * 32 bytes.
-inline constexpr VkDeviceSize kClipmapInfoSize = 288;
 
 }  // namespace voxgi::passes::dvs

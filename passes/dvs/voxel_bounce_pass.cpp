@@ -11,6 +11,8 @@
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
+#include "passes/contracts/filtered_volumes.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/dvs/dvs_pipeline.hpp"
 #include "passes/dvs/passes.hpp"
 
@@ -19,11 +21,6 @@ namespace {
 
 using graph::Access;
 using graph::ResourceKind;
-
-// The filtered volumes lib/cone_trace.glsl reads: one isotropic or six directional ones
-// (+X, -X, +Y, -Y, +Z, -Z), as vct.filter writes them.
-constexpr const char* kFilteredSlot = "filtered";
-constexpr const char* kDirectionalSlots[] = {"pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"};
 
 struct BouncePush {
   uint32_t size[3];
@@ -37,7 +34,8 @@ struct BouncePush {
 class VoxelBouncePass final : public graph::Pass {
  public:
   void setup(graph::PassContext& ctx) override {
-    anisotropic_ = ctx.has(kDirectionalSlots[0]);  // all six or none (validate_voxel_bounce)
+    anisotropic_ =
+        ctx.has(contracts::kDirectionalSlots[0]);  // all six or none (validate_voxel_bounce)
     const std::vector<gpu::Binding> bindings = {
         {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0, anisotropic_ ? 6u : 1u},
@@ -72,12 +70,12 @@ class VoxelBouncePass final : public graph::Pass {
     writer.storage_buffer(0, *ctx.resource("clipmap_info").buffer);
     std::vector<VkDescriptorImageInfo> volumes;
     if (anisotropic_) {
-      for (const char* slot : kDirectionalSlots) {
+      for (const char* slot : contracts::kDirectionalSlots) {
         const graph::BoundResource& v = ctx.resource(slot);
         volumes.push_back({repeat, v.view, v.layout});
       }
     } else {
-      const graph::BoundResource& v = ctx.resource(kFilteredSlot);
+      const graph::BoundResource& v = ctx.resource(contracts::kFilteredSlot);
       volumes.push_back({repeat, v.view, v.layout});
     }
     writer.image_array(1, volumes);
@@ -120,11 +118,12 @@ graph::SlotSpec filtered_input(const char* name, std::string doc) {
 
 // One isotropic or six directional volumes, of the voxels' layout.
 void validate_voxel_bounce(graph::PassCheck& check) {
+  contracts::check_clipmap_info_size(check);
   int directional = 0;
-  for (const char* slot : kDirectionalSlots) directional += check.has(slot) ? 1 : 0;
-  const bool isotropic = check.has(kFilteredSlot);
+  for (const char* slot : contracts::kDirectionalSlots) directional += check.has(slot) ? 1 : 0;
+  const bool isotropic = check.has(contracts::kFilteredSlot);
   if (!(directional == 6 && !isotropic) && !(directional == 0 && isotropic)) {
-    check.slot_error(kFilteredSlot,
+    check.slot_error(contracts::kFilteredSlot,
                      "bind either 'filtered' (isotropic) or all six of pos_x, neg_x, pos_y, "
                      "neg_y, pos_z, neg_z (anisotropic) from vct.filter; " +
                          std::to_string(directional) + " directional volume(s) and " +
@@ -142,14 +141,14 @@ void register_voxel_bounce(graph::Registry& registry) {
       "One indirect diffuse bounce per voxel: hemisphere cones around the voxel normal on the "
       "filtered radiance volume; writes direct + albedo/pi * irradiance";
   info.inputs = {
-      buffer_input("clipmap_info", "voxel.clipmap_info from common.voxelize"),
-      filtered_input(kFilteredSlot,
+      contracts::clipmap_info_input(),
+      filtered_input(contracts::kFilteredSlot,
                      "isotropic filtered volume from vct.filter (or bind the six "
                      "directional volumes)"),
   };
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   for (size_t i = 0; i < 6; ++i) {
-    info.inputs.push_back(filtered_input(kDirectionalSlots[i],
+    info.inputs.push_back(filtered_input(contracts::kDirectionalSlots[i],
                                          std::string("directional volume for cones travelling ") +
                                              directions[i] + " from vct.filter (anisotropic)"));
   }

@@ -13,14 +13,13 @@
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
+#include "passes/contracts/shadow_data.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/dvs/dvs_pipeline.hpp"
 #include "passes/dvs/passes.hpp"
 
 namespace voxgi::passes::dvs {
 namespace {
-
-using graph::Access;
-using graph::ResourceKind;
 
 enum Occlusion : uint32_t { kOcclusionNone = 0, kOcclusionShadowMap = 1, kOcclusionVoxelRays = 2 };
 
@@ -102,7 +101,7 @@ class VoxelLightingPass final : public graph::Pass {
     push.shadow_bias = static_cast<float>(ctx.number("shadow_bias"));
     push.max_steps = static_cast<uint32_t>(ctx.integer("shadow_max_steps"));
     if (has_shadow_maps_) {
-      push.shadow_slots = graph::write_shadow_inputs(ctx, writer, 4, 5);
+      push.shadow_slots = contracts::write_shadow_inputs(ctx, writer, 4, 5);
     }
     pipeline_->bind(cmd);
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
@@ -122,12 +121,7 @@ class VoxelLightingPass final : public graph::Pass {
 };
 
 void validate_voxel_lighting(graph::PassCheck& check) {
-  const graph::ResourceInfo& info = check.info("clipmap_info");
-  if (info.buffer_size < kClipmapInfoSize) {
-    check.slot_error("clipmap_info",
-                     "buffer '" + info.name + "' holds " + std::to_string(info.buffer_size) +
-                         " bytes, the clipmap info needs " + std::to_string(kClipmapInfoSize));
-  }
+  contracts::check_clipmap_info_size(check);
   graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission", "direct"});
 }
 
@@ -140,18 +134,12 @@ void register_voxel_lighting(graph::Registry& registry) {
       "Deferred voxel shading: per-voxel direct lighting (point, spot, directional) with "
       "normal-weighted attenuation, shadow-map or soft voxel-ray occlusion, plus emission";
   info.inputs = {
-      buffer_input("clipmap_info", "voxel.clipmap_info from common.voxelize"),
+      contracts::clipmap_info_input(),
       clipmap_input("albedo", "voxel albedo (rgb) and opacity (a)"),
       clipmap_input("normal", "voxel averaged normal (xyz), occupancy (w)"),
       clipmap_input("emission", "voxel emitted radiance; unbound: none", true),
-      {"shadow_maps",
-       graph::kinds(ResourceKind::Image2D),
-       Access::Sampled,
-       graph::kStageCompute,
-       {VK_FORMAT_D32_SFLOAT},
-       true,
-       "from common.shadow_maps (occlusion = shadow_map)"},
-      buffer_input("shadow_matrices", "from common.shadow_maps (occlusion = shadow_map)", true),
+      contracts::shadow_maps_input("from common.shadow_maps (occlusion = shadow_map)"),
+      contracts::shadow_matrices_input("from common.shadow_maps (occlusion = shadow_map)"),
   };
   info.outputs = {
       radiance_volume_output("radiance",

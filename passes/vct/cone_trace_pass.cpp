@@ -1,5 +1,5 @@
 // vct.cone_trace (indirect diffuse + ambient occlusion) and vct.cone_trace_specular (one
-// glossy cone): cone tracing through the filtered volumes (shaders/lib/cone_trace.glsl) per
+// glossy cone): cone tracing through the filtered volumes (shaders/contracts/cone_trace.glsl) per
 // G-buffer pixel, at full resolution or at half resolution followed by a depth- and
 // normal-aware upsample through the graph-provided scratch image `half_res`.
 
@@ -12,6 +12,8 @@
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
+#include "passes/contracts/gbuffer.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -69,7 +71,7 @@ class ConeTracePass final : public graph::Pass {
 
   void setup(graph::PassContext& ctx) override {
     anisotropic_ = bound_filtered_volumes(ctx) == FilteredVolumes::Anisotropic;
-    if (!sampler_) sampler_ = std::make_unique<VolumeSampler>(ctx.gpu());
+    if (!sampler_) sampler_ = std::make_unique<contracts::VolumeSampler>(ctx.gpu());
     half_ = ctx.choice("resolution") == "half";
     has_ao_ = !specular_ && ctx.has("ao");
     has_shadow_ = !specular_ && ctx.has("shadow");
@@ -146,12 +148,12 @@ class ConeTracePass final : public graph::Pass {
       std::vector<VkDescriptorImageInfo> images;
       const VkSampler repeat = sampler_->handle();
       if (anisotropic_) {
-        for (const char* slot : kDirectionalSlots) {
+        for (const char* slot : contracts::kDirectionalSlots) {
           const graph::BoundResource& v = ctx.resource(slot);
           images.push_back({repeat, v.view, v.layout});
         }
       } else {
-        const graph::BoundResource& v = ctx.resource(kFilteredSlot);
+        const graph::BoundResource& v = ctx.resource(contracts::kFilteredSlot);
         images.push_back({repeat, v.view, v.layout});
       }
       writer.image_array(kBindingVolumes, images);
@@ -224,13 +226,14 @@ class ConeTracePass final : public graph::Pass {
   bool half_ = false;
   bool has_ao_ = false;
   bool has_shadow_ = false;
-  std::unique_ptr<VolumeSampler> sampler_;
+  std::unique_ptr<contracts::VolumeSampler> sampler_;
   std::optional<gpu::ComputePipeline> trace_;
   std::optional<gpu::ComputePipeline> shadow_;
   std::optional<gpu::ComputePipeline> upsample_;
 };
 
 void validate_cone_trace(graph::PassCheck& check) {
+  contracts::check_clipmap_info_size(check);
   check_filtered_volumes_bound(check);
   if (check.choice("resolution") == "half" && !check.has("half_res")) {
     check.param_error("resolution",
@@ -262,22 +265,21 @@ graph::SlotSpec image_output(const char* name, const char* doc, bool optional,
 
 std::vector<graph::SlotSpec> trace_inputs() {
   std::vector<graph::SlotSpec> inputs = {
-      clipmap_info_input(),
-      filtered_input(kFilteredSlot,
+      contracts::clipmap_info_input(),
+      filtered_input(contracts::kFilteredSlot,
                      "isotropic filtered volume from vct.filter (or bind the six "
                      "directional volumes)")};
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
-  for (size_t i = 0; i < kDirectionalSlots.size(); ++i) {
-    inputs.push_back(filtered_input(kDirectionalSlots[i],
+  for (size_t i = 0; i < contracts::kDirectionalSlots.size(); ++i) {
+    inputs.push_back(filtered_input(contracts::kDirectionalSlots[i],
                                     std::string("directional volume for cones travelling ") +
                                         directions[i] + " from vct.filter (anisotropic)"));
   }
-  inputs.push_back(graph::sampled_2d_input("base_color", "G-buffer base colour"));
-  inputs.push_back(graph::sampled_2d_input("normal", "G-buffer normal + roughness"));
-  inputs.push_back(
-      graph::sampled_2d_input("material", "G-buffer metallic, roughness, occlusion, coverage"));
-  inputs.push_back(
-      graph::sampled_2d_input("depth", "G-buffer depth", false, {VK_FORMAT_D32_SFLOAT}));
+  for (contracts::GbufferTarget target :
+       {contracts::GbufferTarget::BaseColor, contracts::GbufferTarget::Normal,
+        contracts::GbufferTarget::Material, contracts::GbufferTarget::Depth}) {
+    inputs.push_back(contracts::gbuffer_input(target));
+  }
   return inputs;
 }
 

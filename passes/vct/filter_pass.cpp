@@ -1,5 +1,5 @@
 // vct.filter: turns the radiance clipmap into the filtered volumes the cone tracer samples
-// (layout documented at the top of shaders/lib/cone_trace.glsl): premultiplied radiance and
+// (layout documented at the top of shaders/contracts/cone_trace.glsl): premultiplied radiance and
 // opacity, mip 0 of every level made consistent with the finer level it contains, then a full
 // mip chain per level. Isotropic mode writes one volume; anisotropic mode six directional
 // volumes built by front-to-back compositing along each axis (Crassin; seed 001 section 3).
@@ -13,6 +13,7 @@
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -34,9 +35,9 @@ class FilterPass final : public graph::Pass {
     anisotropic_ = ctx.choice("mode") == "anisotropic";
     volume_slots_.clear();
     if (anisotropic_) {
-      for (const char* slot : kDirectionalSlots) volume_slots_.push_back(slot);
+      for (const char* slot : contracts::kDirectionalSlots) volume_slots_.push_back(slot);
     } else {
-      volume_slots_.push_back(kFilteredSlot);
+      volume_slots_.push_back(contracts::kFilteredSlot);
     }
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0}};
@@ -111,8 +112,9 @@ class FilterPass final : public graph::Pass {
 };
 
 void validate_filter(graph::PassCheck& check) {
+  contracts::check_clipmap_info_size(check);
   if (check.choice("mode") == "isotropic") {
-    if (!check.has(kFilteredSlot)) {
+    if (!check.has(contracts::kFilteredSlot)) {
       check.param_error("mode", "mode 'isotropic' needs the output slot 'filtered' bound");
     }
   } else if (const std::string missing = unbound_directional_slots(check); !missing.empty()) {
@@ -122,7 +124,8 @@ void validate_filter(graph::PassCheck& check) {
                           missing);
   }
   graph::check_same_clipmap_layout(
-      check, "radiance", {kFilteredSlot, "pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"});
+      check, "radiance",
+      {contracts::kFilteredSlot, "pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"});
 }
 
 graph::SlotSpec filtered_output(const char* name, std::string doc) {
@@ -144,17 +147,18 @@ void register_filter(graph::Registry& registry) {
       "Filters the radiance clipmap into the cone tracer's volumes: premultiplied radiance and "
       "opacity with per-level mips, levels kept consistent; isotropic or six anisotropic "
       "directions";
-  info.inputs = {clipmap_info_input(),
+  info.inputs = {contracts::clipmap_info_input(),
                  sampled_clipmap("radiance",
                                  "radiance clipmap (rgb outgoing radiance, a opacity) from "
                                  "vct.inject or dvs.voxel_lighting; only mip 0 is read",
                                  false, {VK_FORMAT_R16G16B16A16_SFLOAT})};
   info.outputs = {filtered_output("filtered", "isotropic filtered volume (mode isotropic)")};
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
-  for (size_t i = 0; i < kDirectionalSlots.size(); ++i) {
-    info.outputs.push_back(filtered_output(
-        kDirectionalSlots[i], std::string("directional volume seen by cones travelling ") +
-                                  directions[i] + " (mode anisotropic)"));
+  for (size_t i = 0; i < contracts::kDirectionalSlots.size(); ++i) {
+    info.outputs.push_back(
+        filtered_output(contracts::kDirectionalSlots[i],
+                        std::string("directional volume seen by cones travelling ") +
+                            directions[i] + " (mode anisotropic)"));
   }
   info.params = {{"mode",
                   graph::ParamType::Enum,

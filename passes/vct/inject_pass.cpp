@@ -12,6 +12,8 @@
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
+#include "passes/contracts/shadow_data.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -76,7 +78,7 @@ class InjectPass final : public graph::Pass {
     InjectPush push{0, static_cast<float>(ctx.number("normal_offset")),
                     ctx.flag("shadows") ? 1u : 0u, 0.0f};
     if (has_shadows_) {
-      push.shadow_slots = graph::write_shadow_inputs(ctx, writer, 4, 5);
+      push.shadow_slots = contracts::write_shadow_inputs(ctx, writer, 4, 5);
     }
     pipeline_->bind(cmd);
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
@@ -104,21 +106,13 @@ void register_inject(graph::Registry& registry) {
       "Direct light into the radiance clipmap: albedo/pi x light irradiance x cos x shadow-map "
       "visibility per voxel, plus emission";
   info.inputs = {
-      clipmap_info_input(),
+      contracts::clipmap_info_input(),
       sampled_clipmap("albedo", "voxel albedo (rgb linear) and opacity (a)", false, kFloatRgba),
       sampled_clipmap("normal", "voxel averaged normal (xyz; ~0 where faces cancel)", false,
                       kFloatRgba),
       sampled_clipmap("emission", "voxel emitted radiance (rgb); unbound: none", true, kFloatRgba),
-      graph::sampled_2d_input("shadow_maps",
-                              "from common.shadow_maps; unbound: lights are unshadowed", true,
-                              {VK_FORMAT_D32_SFLOAT}),
-      {"shadow_matrices",
-       graph::kinds(graph::ResourceKind::Buffer),
-       graph::Access::StorageRead,
-       graph::kStageCompute,
-       {},
-       true,
-       "from common.shadow_maps"},
+      contracts::shadow_maps_input("from common.shadow_maps; unbound: lights are unshadowed"),
+      contracts::shadow_matrices_input("from common.shadow_maps"),
   };
   info.outputs = {{"radiance",
                    graph::kinds(graph::ResourceKind::Clipmap),
@@ -141,6 +135,7 @@ void register_inject(graph::Registry& registry) {
   };
   info.may_skip = true;
   info.validate = [](graph::PassCheck& check) {
+    contracts::check_clipmap_info_size(check);
     graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission"});
   };
   registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });

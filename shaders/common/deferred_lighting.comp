@@ -6,7 +6,8 @@
 #include "lib/common.glsl"
 #include "lib/brdf.glsl"
 #include "lib/scene.glsl"
-#include "lib/shadow_data.glsl"
+#include "contracts/shadow_data.glsl"
+#include "contracts/gbuffer.glsl"
 
 #ifndef HAS_SHADOWS
 #define HAS_SHADOWS 0
@@ -70,22 +71,21 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(pixel), pc.size))) return;
   float depth = texelFetch(g_depth, pixel, 0).r;
-  if (depth >= 1.0) {
+  if (!gbuffer_has_surface(depth)) {
     imageStore(out_radiance, pixel, vec4(vec3(pc.background), 1.0));
     return;
   }
   vec2 uv = (vec2(pixel) + 0.5) / vec2(pc.size);
   vec3 p = reconstruct_world_position(frame.inv_proj, frame.inv_view, uv, depth);
   vec4 normal_roughness = texelFetch(g_normal, pixel, 0);
-  vec3 n = safe_normalize(normal_roughness.xyz, vec3(0.0, 1.0, 0.0));
-  vec4 material = texelFetch(g_material, pixel, 0);
+  vec3 n = gbuffer_normal(normal_roughness);
   SurfaceBrdf surface;
-  surface.base_color = texelFetch(g_base_color, pixel, 0).rgb;
-  surface.metallic = material.r;
-  surface.roughness = normal_roughness.w;
+  surface.base_color = gbuffer_base_color(texelFetch(g_base_color, pixel, 0));
+  surface.metallic = gbuffer_metallic(texelFetch(g_material, pixel, 0));
+  surface.roughness = gbuffer_roughness(normal_roughness);
   vec3 v = safe_normalize(frame.camera_position.xyz - p, n);
 
-  vec3 radiance = texelFetch(g_emission, pixel, 0).rgb;
+  vec3 radiance = gbuffer_emission(texelFetch(g_emission, pixel, 0));
   uint light_count = scene_light_count();
   for (uint i = 0u; i < light_count; ++i) {
     SceneLight light = scene_lights[i];

@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "lib/common.glsl"
 #include "lib/scene.glsl"
+#include "contracts/gbuffer.glsl"
 
 layout(location = 0) in vec3 in_normal;
 layout(location = 1) in vec4 in_tangent;
@@ -19,8 +20,10 @@ void main() {
   vec4 tangent = vec4(gl_FrontFacing ? in_tangent.xyz : -in_tangent.xyz, in_tangent.w);
   MaterialSample m = sample_material(in_material, in_uv, normal, tangent);
   if (m.alpha_mask && m.base_color.a < m.alpha_cutoff) discard;
-  out_base_color = vec4(m.base_color.rgb, m.occlusion);
-  out_normal = vec4(m.normal, m.roughness);
-  out_material = vec4(m.metallic, m.roughness, m.occlusion, 1.0);
-  out_emission = vec4(sanitize_radiance(m.emissive), 1.0);
+  GbufferTexels g = gbuffer_encode(m.base_color.rgb, m.normal, m.metallic, m.roughness,
+                                   m.occlusion, sanitize_radiance(m.emissive));
+  out_base_color = g.base_color;
+  out_normal = g.normal;
+  out_material = g.material;
+  out_emission = g.emission;
 }

@@ -1,10 +1,10 @@
 #version 460
 // Voxelization resolve: turns the scratch sums of one box into the voxel volumes (toroidal
-// clipmap texels, see lib/voxel_clipmap.glsl), and zeroes the scratch records it read so the
+// clipmap texels, see contracts/voxel_clipmap.glsl), and zeroes the scratch records it read so the
 // next box starts from zero.
 
 #include "lib/common.glsl"
-#include "lib/voxel_normal.glsl"
+#include "contracts/voxel_volumes.glsl"
 #include "common/voxel_accumulate.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;

@@ -2,21 +2,21 @@
 #extension GL_GOOGLE_include_directive : require
 // Deferred voxel shading, one indirect bounce per voxel (Villegas, "Voxel Global
 // Illumination"): diffuse cones over the hemisphere of each voxel's averaged normal gather the
-// irradiance E from the filtered radiance volume (vct.filter's output, lib/cone_trace.glsl),
+// irradiance E from the filtered radiance volume (vct.filter's output, contracts/cone_trace.glsl),
 // and the voxel's outgoing radiance becomes direct + albedo / pi * E. Repeated K times, each
 // time after filtering, this is the fixed-point iteration L = L_direct + albedo/pi * E[L], a
 // contraction with gain at most albedo < 1 (docs/dvs.md).
-#include "lib/voxel_normal.glsl"
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_volumes.glsl"
+#include "contracts/voxel_clipmap.glsl"
 #define VCT_VOLUME_SET 0
 #define VCT_VOLUME_BINDING 1
-#include "lib/cone_trace.glsl"
+#include "contracts/cone_trace.glsl"
 #include "lib/common.glsl"
 #include "dvs/voxel_volume.glsl"
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
-// binding 0: VoxelClipmapInfo; binding 1: vct_volumes (lib/cone_trace.glsl)
+// binding 0: VoxelClipmapInfo; binding 1: vct_volumes (contracts/cone_trace.glsl)
 layout(set = 0, binding = 2) uniform sampler3D voxel_albedo;
 layout(set = 0, binding = 3) uniform sampler3D voxel_normal;
 layout(set = 0, binding = 4) uniform sampler3D direct_radiance;
@@ -58,7 +58,7 @@ void main() {
       s.start_distance = pc.start_offset * size;
       s.ao_falloff = 0.0;
       float visibility;
-      // Gather from the voxel's average surface plane (lib/voxel_normal.glsl), with the cone
+      // Gather from the voxel's average surface plane (contracts/voxel_volumes.glsl), with the cone
       // origin normal_offset voxels off the centre as before.
       vec3 unit_n = n * inversesqrt(n_len2);
       float plane = voxel_plane_offset(texelFetch(voxel_normal, texel, 0));

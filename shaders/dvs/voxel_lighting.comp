@@ -4,11 +4,11 @@
 // voxel of the clipmap under the scene's punctual lights, with the normal-weighted attenuation
 // of §2.1, occlusion from the shadow maps or from soft voxel ray casting (§2.2.1), plus the
 // voxel's emission (§2.3). One invocation per texel of the stacked clipmap image.
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_clipmap.glsl"
 #include "lib/common.glsl"
-#include "lib/voxel_normal.glsl"
+#include "contracts/voxel_volumes.glsl"
 #include "lib/scene.glsl"
-#include "lib/shadow_data.glsl"
+#include "contracts/shadow_data.glsl"
 #include "dvs/voxel_volume.glsl"
 
 #ifndef HAS_EMISSION
@@ -23,7 +23,7 @@
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
-// binding 0: VoxelClipmapInfo (lib/voxel_clipmap.glsl)
+// binding 0: VoxelClipmapInfo (contracts/voxel_clipmap.glsl)
 layout(set = 0, binding = 1) uniform sampler3D voxel_albedo;
 layout(set = 0, binding = 2) uniform sampler3D voxel_normal;
 #if HAS_EMISSION
@@ -89,7 +89,7 @@ void main() {
   if (occupied && voxel_level_valid(level)) {
     float size = voxel_size(level);
     vec3 n = safe_normalize(normal.xyz, vec3(0.0));
-    // Lit on its average surface plane, not at its centre (lib/voxel_normal.glsl).
+    // Lit on its average surface plane, not at its centre (contracts/voxel_volumes.glsl).
     vec3 p = dvs_texel_center(texel, level) + n * (voxel_plane_offset(normal) * size);
     vec3 irradiance = vec3(0.0);
     uint light_count = scene_light_count();
@@ -134,7 +134,7 @@ void main() {
       }
 #if HAS_SHADOW_MAPS
       if (pc.occlusion == OCCLUSION_SHADOW_MAP && i < pc.shadow_slots) {
-        // From the surface point, off it by two shadow-map texels (lib/shadow_data.glsl); the
+        // From the surface point, off it by two shadow-map texels (contracts/shadow_data.glsl); the
         // voxel-ray start offset would look past occluders close in front of the surface.
         visibility =
             shadow_surface_visibility(shadow_maps, shadow_lights[i], float(i * 6u),

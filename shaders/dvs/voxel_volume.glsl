@@ -1,6 +1,6 @@
 #ifndef VOXGI_DVS_VOXEL_VOLUME_GLSL
 #define VOXGI_DVS_VOXEL_VOLUME_GLSL
-// Per-voxel helpers of the dvs shaders on top of lib/voxel_clipmap.glsl (include that first):
+// Per-voxel helpers of the dvs shaders on top of contracts/voxel_clipmap.glsl (include that first):
 // the inverse of the toroidal addressing (texel -> voxel position), trilinear opacity with
 // the wrap applied per corner, and the normal-weighted attenuation of Villegas §2.1.
 

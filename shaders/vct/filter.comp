@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// vct.filter: builds the filtered volumes the cone tracer reads (layout: lib/cone_trace.glsl)
+// vct.filter: builds the filtered volumes the cone tracer reads (layout: contracts/cone_trace.glsl)
 // from the radiance clipmap (rgb = outgoing radiance, a = opacity, not premultiplied).
 //   STAGE_LEVEL: mip 0 of one clipmap level. Where the next finer level covers a voxel's eight
 //     children, the voxel is their filter (levels agree); elsewhere the injected radiance,
@@ -9,12 +9,13 @@
 // Isotropic: box filter of the 8 children. Anisotropic (ANISOTROPIC=1): per direction, the
 // front-to-back composite of each child pair along the axis, averaged over the 4 columns.
 // NaN/Inf and out-of-range values are scrubbed when read. The filter works on premultiplied
-// radiance and opacity; what it stores is the optical-depth form of lib/vct_volume_encoding.glsl.
+// radiance and opacity; what it stores is the optical-depth form of
+// contracts/vct_volume_encoding.glsl.
 #include "lib/common.glsl"
-#include "lib/vct_volume_encoding.glsl"
+#include "contracts/vct_volume_encoding.glsl"
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_clipmap.glsl"
 
 #ifndef ANISOTROPIC
 #define ANISOTROPIC 0
@@ -56,7 +57,7 @@ vec4 scrub(vec4 v) {
   return vec4(sanitize_radiance(v.rgb), a);
 }
 
-// A stored value (lib/vct_volume_encoding.glsl) with NaN/Inf removed, depth within range.
+// A stored value (contracts/vct_volume_encoding.glsl) with NaN/Inf removed, depth within range.
 vec4 scrub_stored(vec4 v) {
   float tau = isnan(v.a) || isinf(v.a) ? 0.0 : clamp(v.a, 0.0, VCT_MAX_OPTICAL_DEPTH);
   return vec4(sanitize_radiance(v.rgb), tau);

@@ -1,6 +1,9 @@
 #ifndef VOXGI_VCT_GBUFFER_SAMPLE_GLSL
 #define VOXGI_VCT_GBUFFER_SAMPLE_GLSL
-// G-buffer access shared by the vct trace and upsample shaders (bindings 2..6 of set 0).
+// G-buffer access shared by the vct trace and upsample shaders (bindings 2..6 of set 0); the
+// encoding is the contract's (contracts/gbuffer.glsl).
+
+#include "contracts/gbuffer.glsl"
 
 layout(set = 0, binding = 2) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 3) uniform sampler2D g_base_color;
@@ -30,15 +33,14 @@ GbufferSample gbuffer_sample(ivec2 pixel) {
   GbufferSample g;
   pixel = clamp(pixel, ivec2(0), gbuffer_size() - 1);
   float depth = texelFetch(g_depth, pixel, 0).r;
-  g.valid = depth < 1.0 && !isnan(depth);
+  g.valid = gbuffer_has_surface(depth);
   vec2 uv = (vec2(pixel) + 0.5) / vec2(gbuffer_size());
   g.position = reconstruct_world_position(frame.inv_proj, frame.inv_view, uv, depth);
   vec4 normal_roughness = texelFetch(g_normal, pixel, 0);
-  g.normal = safe_normalize(normal_roughness.xyz, vec3(0.0, 1.0, 0.0));
-  vec4 material = texelFetch(g_material, pixel, 0);
-  g.base_color = clamp(texelFetch(g_base_color, pixel, 0).rgb, vec3(0.0), vec3(1.0));
-  g.metallic = clamp(material.r, 0.0, 1.0);
-  g.roughness = clamp(normal_roughness.w, 0.0, 1.0);
+  g.normal = gbuffer_normal(normal_roughness);
+  g.base_color = gbuffer_base_color(texelFetch(g_base_color, pixel, 0));
+  g.metallic = gbuffer_metallic(texelFetch(g_material, pixel, 0));
+  g.roughness = gbuffer_roughness(normal_roughness);
   g.view_depth = g.valid ? gbuffer_view_depth(pixel, depth) : 0.0;
   return g;
 }

@@ -9,12 +9,12 @@
 // light (cos = 1): a thin wall lit from one side glows rather than going black, and the
 // shadow map still decides whether light reaches it. Output is sanitized HDR.
 #include "lib/common.glsl"
-#include "lib/voxel_normal.glsl"
+#include "contracts/voxel_volumes.glsl"
 #include "lib/scene.glsl"
-#include "lib/shadow_data.glsl"
+#include "contracts/shadow_data.glsl"
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_clipmap.glsl"
 
 #ifndef HAS_SHADOWS
 #define HAS_SHADOWS 0
@@ -47,7 +47,7 @@ layout(push_constant) uniform Push {
 } pc;
 
 #if HAS_SHADOWS
-// Visibility of the surface point p (world space) from light `index`: lib/shadow_data.glsl.
+// Visibility of the surface point p (world space) from light `index`: contracts/shadow_data.glsl.
 float shadow_visibility(uint index, vec3 p, vec3 facing, float offset, float distance_to_light) {
   if (pc.shadows_enabled == 0u || index >= pc.shadow_slots) return 1.0;
   return shadow_surface_visibility(shadow_maps, shadow_lights[index], float(index * 6u), p,
@@ -85,8 +85,8 @@ void main() {
   bool has_normal = n_len >= NORMAL_MIN_LENGTH;
   vec3 n = has_normal ? n_raw / n_len : vec3(0.0);
 
-  // The voxel's surface: its centre moved onto the average surface plane (lib/voxel_normal.glsl),
-  // world space (anchor-relative arithmetic first for precision).
+  // The voxel's surface: its centre moved onto the average surface plane
+  // (contracts/voxel_volumes.glsl), world space (anchor-relative arithmetic first for precision).
   float size = voxel_size(level);
   vec3 relative = voxel_level_min(level) + (vec3(window) + 0.5) * size;
   if (has_normal) relative += n * (voxel_plane_offset(normal_occupied) * size);

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // vct.cone_trace / vct.cone_trace_specular: per pixel of the G-buffer (or per 2x2 block at
 // half resolution, traced from the block's nearest pixel), cone tracing through the filtered
-// volumes (lib/cone_trace.glsl).
+// volumes (contracts/cone_trace.glsl).
 //   diffuse (SPECULAR 0): outgoing radiance c_diff / pi * E with E from the diffuse cones;
 //                         ambient-occlusion visibility in `ao` (full res) or scratch alpha.
 //   specular (SPECULAR 1): one cone along the reflection, aperture from GGX roughness, times
@@ -15,10 +15,10 @@
 #include "lib/frame.glsl"
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_clipmap.glsl"
 #define VCT_VOLUME_SET 0
 #define VCT_VOLUME_BINDING 1
-#include "lib/cone_trace.glsl"
+#include "contracts/cone_trace.glsl"
 #include "vct/gbuffer_sample.glsl"
 
 #ifndef SPECULAR

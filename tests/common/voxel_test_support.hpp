@@ -15,6 +15,7 @@
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene.hpp"
 #include "passes/common/voxel_clipmap_window.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "tests/common/test_graph_gpu.hpp"
 
 namespace voxgi::test {
@@ -22,7 +23,7 @@ namespace voxgi::test {
 struct VoxelVolumes {
   uint32_t resolution = 0;
   uint32_t levels = 0;
-  passes::common::VoxelClipmapInfo info{};
+  contracts::VoxelClipmapInfo info{};
   std::vector<uint8_t> albedo_bytes, normal_bytes, emission_bytes;  // raw texels
   std::vector<glm::vec4> albedo, normal, emission;                  // decoded
 

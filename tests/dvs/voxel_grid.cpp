@@ -31,13 +31,13 @@ size_t VoxelGrid::texel_index(uint32_t level, glm::ivec3 window_voxel) const {
 }
 
 glm::vec3 VoxelGrid::center(uint32_t level, glm::ivec3 window_voxel) const {
-  const ClipmapInfoData::Level& lv = info_.levels[level];
+  const contracts::VoxelClipmapLevelInfo& lv = info_.levels[level];
   return glm::vec3(info_.anchor) + glm::vec3(lv.min_corner_size) +
          (glm::vec3(window_voxel) + 0.5f) * lv.min_corner_size.w;
 }
 
 glm::ivec3 VoxelGrid::window_voxel_at(uint32_t level, glm::vec3 p) const {
-  const ClipmapInfoData::Level& lv = info_.levels[level];
+  const contracts::VoxelClipmapLevelInfo& lv = info_.levels[level];
   return glm::ivec3(glm::floor((p - glm::vec3(info_.anchor) - glm::vec3(lv.min_corner_size)) /
                                lv.min_corner_size.w));
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Voxel clipmaps built on the CPU for the dvs tests, in the layout of the voxel contract
-// (shaders/lib/voxel_clipmap.glsl): one (R, R, R * L) stack of toroidal levels and the
+// (shaders/contracts/voxel_clipmap.glsl): one (R, R, R * L) stack of toroidal levels and the
 // 288-byte VoxelClipmapInfo buffer. Tests fill voxels by world position and upload them with
 // the dvs_test.voxel_source pass (voxel_source_pass.hpp).
 
@@ -10,18 +10,11 @@
 #include <functional>
 #include <vector>
 
+#include "passes/contracts/voxel_clipmap.hpp"
+
 namespace voxgi::test {
 
-// std430 mirror of VoxelClipmapInfo.
-struct ClipmapInfoData {
-  glm::vec4 anchor;
-  glm::uvec4 dims;
-  struct Level {
-    glm::ivec4 origin_voxel;
-    glm::vec4 min_corner_size;
-  } levels[8];
-};
-static_assert(sizeof(ClipmapInfoData) == 288);
+using ClipmapInfoData = contracts::VoxelClipmapInfo;
 
 struct VoxelValue {
   glm::vec3 albedo{0.0f};

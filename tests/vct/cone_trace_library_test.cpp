@@ -1,4 +1,4 @@
-// Energy tests of lib/cone_trace.glsl through vct.filter on volumes the test writes:
+// Energy tests of contracts/cone_trace.glsl through vct.filter on volumes the test writes:
 // a uniform emissive shell around a point gives irradiance pi*L for every cone count, an
 // opaque wall stops a cone, and the step-size opacity correction makes results independent
 // of the step factor.

@@ -51,7 +51,7 @@ glm::vec4 filter_children(const glm::vec4 c[8], int volume, bool anisotropic) {
 }
 
 // Premultiplied radiance and opacity from the filter's stored optical-depth form
-// (shaders/lib/vct_volume_encoding.glsl: a = tau, rgb = radiance x tau / 8).
+// (shaders/contracts/vct_volume_encoding.glsl: a = tau, rgb = radiance x tau / 8).
 glm::vec4 decode_filtered(glm::vec4 stored) {
   constexpr float kMaxOpticalDepth = 8.0f;
   const float tau = std::max(stored.a, 0.0f);

@@ -13,14 +13,14 @@
 #include <ostream>
 #include <string>
 
-#include "passes/common/voxel_clipmap_window.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 #include "tests/common/render_harness.hpp"
 #include "tests/gpu/gpu_test_env.hpp"
 
 namespace voxgi::test {
 namespace {
 
-using passes::common::VoxelClipmapInfo;
+using contracts::VoxelClipmapInfo;
 
 constexpr uint32_t kImage = 64;
 constexpr uint32_t kResolution = 32;

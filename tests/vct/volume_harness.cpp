@@ -27,7 +27,7 @@ glm::ivec3 clipmap_texel(const ClipmapInfo& info, glm::ivec3 window, int level) 
 
 ClipmapInfo make_clipmap_info(int resolution, int levels, float base_voxel, glm::vec3 centre,
                               glm::vec3 anchor) {
-  ClipmapInfo info;
+  ClipmapInfo info{};
   info.anchor = glm::vec4(anchor, 0.0f);
   info.dims = glm::uvec4(static_cast<uint32_t>(resolution), static_cast<uint32_t>(levels), 0, 0);
   for (int l = 0; l < levels; ++l) {
@@ -225,7 +225,7 @@ std::vector<glm::vec4> VolumeGraph::download(const std::string& resource, uint32
 
 namespace {
 
-// The sampler lib/cone_trace.glsl expects (as passes/vct/vct_pipeline.cpp creates it).
+// The sampler contracts/cone_trace.glsl expects (as passes/vct/vct_pipeline.cpp creates it).
 class ProbeSampler {
  public:
   explicit ProbeSampler(gpu::Context& context) : context_(context) {

@@ -3,7 +3,7 @@
 // ("vcttest.volumes") uploads CPU clipmap data (clipmap info, albedo, normal, emission,
 // radiance) into the graph's resources, so injection, filtering and cone tracing can be
 // checked against analytic answers without a voxelizer. A probe compute shader
-// (tests/vct/shaders/probe.comp) evaluates lib/cone_trace.glsl at chosen points.
+// (tests/vct/shaders/probe.comp) evaluates contracts/cone_trace.glsl at chosen points.
 
 #include <glm/glm.hpp>
 
@@ -20,19 +20,12 @@
 #include "engine/graph/pass.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene.hpp"
+#include "passes/contracts/voxel_clipmap.hpp"
 
 namespace voxgi::test {
 
-// Mirrors VoxelClipmapInfo of shaders/lib/voxel_clipmap.glsl (std430, 288 bytes).
-struct ClipmapInfo {
-  glm::vec4 anchor{0.0f};
-  glm::uvec4 dims{0u};
-  struct Level {
-    glm::ivec4 origin_voxel{0};
-    glm::vec4 min_corner_size{0.0f};
-  } levels[8];
-};
-static_assert(sizeof(ClipmapInfo) == 288);
+// The clipmap description the vct passes read (passes/contracts/voxel_clipmap.hpp).
+using ClipmapInfo = contracts::VoxelClipmapInfo;
 
 // A clipmap of R^3 x L voxels as RGBA floats, addressed by level and window voxel with the
 // toroidal wrap of voxel_clipmap.glsl.

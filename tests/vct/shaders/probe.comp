@@ -1,10 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Test probe of lib/cone_trace.glsl: diffuse irradiance + AO at a point with a normal, or the
+// Test probe of contracts/cone_trace.glsl: diffuse irradiance + AO at a point with a normal, or the
 // radiance and opacity of one cone.
-#include "lib/voxel_clipmap.glsl"
+#include "contracts/voxel_clipmap.glsl"
 #define VCT_VOLUME_BINDING 1
-#include "lib/cone_trace.glsl"
+#include "contracts/cone_trace.glsl"
 
 layout(local_size_x = 64) in;
 

@@ -1,16 +1,17 @@
 #ifndef VOXGI_CONE_TRACE_GLSL
 #define VOXGI_CONE_TRACE_GLSL
-// Voxel cone tracing through the filtered radiance clipmap (vct.filter's outputs). Used by
-// vct.cone_trace, vct.cone_trace_specular and any pass that gathers from the volume (dvs's
-// per-voxel bounce). docs/vct.md derives the weights and corrections used here.
+// Contract: voxel cone tracing through the filtered radiance clipmap (vct.filter's outputs),
+// the reading side of that data shared by every family that gathers from it (vct.cone_trace,
+// vct.cone_trace_specular, dvs's per-voxel bounce). C++ twin (slot names, sampler):
+// passes/contracts/filtered_volumes.hpp. docs/vct.md derives the weights and corrections.
 //
 // STORAGE (written by vct.filter, read here)
-//   Every filtered volume is a clipmap with the addressing of lib/voxel_clipmap.glsl (same R,
+//   Every filtered volume is a clipmap with the addressing of contracts/voxel_clipmap.glsl (same R,
 //   L, toroidal origin) and a full mip chain: mip m holds, per level l, R>>m voxels per edge at
 //   z in [l*(R>>m), (l+1)*(R>>m)). Texel m of world voxel w is (w >> m) mod (R >> m).
-//   The optical-depth form of lib/vct_volume_encoding.glsl: a = optical depth tau of one voxel
-//   length at that level and mip, rgb = radiance x tau / VCT_MAX_OPTICAL_DEPTH. (The filter's
-//   own arithmetic is in premultiplied radiance and opacity; see that file for why.)
+//   The optical-depth form of contracts/vct_volume_encoding.glsl: a = optical depth tau of one
+//   voxel length at that level and mip, rgb = radiance x tau / VCT_MAX_OPTICAL_DEPTH. (The
+//   filter's own arithmetic is in premultiplied radiance and opacity; see that file for why.)
 //   Mip m of level l is the filter of mip m-1; mip 0 of level l > 0 is,
 //   where level l-1 covers it, the filter of level l-1's mip 0 (so the levels agree), and
 //   elsewhere the injected radiance of level l.
@@ -22,12 +23,12 @@
 //   the isotropic value in all six.
 //
 // BINDINGS (the includer provides them)
-//   Include lib/voxel_clipmap.glsl first (the clipmap info buffer). Define VCT_VOLUME_SET and
+//   Include contracts/voxel_clipmap.glsl first (the clipmap info buffer). Define VCT_VOLUME_SET and
 //   VCT_VOLUME_BINDING (defaults 0 and 1) and VCT_ANISOTROPIC (default 0); the volumes are
 //   one array binding `sampler3D vct_volumes[1 or 6]`, each combined with a sampler that is
 //   LINEAR, address mode REPEAT (the toroidal wrap in x and y; z is interpolated here by hand
 //   because levels are stacked in z), whole-mip lods (mipmap mode NEAREST suffices) and no
-//   anisotropic filtering, which has no meaning for explicit lods. passes/vct's VolumeSampler
+//   anisotropic filtering, which has no meaning for explicit lods. contracts::VolumeSampler
 //   is exactly that; gpu::SamplerKind::LinearRepeatMipmapped also works but adds anisotropy
 //   where the device has it.
 //
@@ -39,7 +40,7 @@
 //   vct_specular_tan_half_angle(r)     cone aperture for a GGX perceptual roughness
 // Positions are anchor-relative (voxel_relative(world)); distances in metres.
 
-#include "lib/vct_volume_encoding.glsl"
+#include "contracts/vct_volume_encoding.glsl"
 
 #ifndef VCT_VOLUME_SET
 #define VCT_VOLUME_SET 0

@@ -1,6 +1,7 @@
 #ifndef VOXGI_SHADOW_DATA_GLSL
 #define VOXGI_SHADOW_DATA_GLSL
-// The shadow-map data the common.shadow_maps pass writes; mirrors passes/common/shadow_layout.hpp.
+// Contract: the shadow-map data common.shadow_maps writes and lighting passes of any family
+// read. C++ twin: passes/contracts/shadow_data.hpp (std430, 416 bytes per light). No bindings.
 struct ShadowLight {
   mat4 view_proj[6];  // relative to origin: clip = view_proj * (p - origin)
   vec4 origin;

@@ -1,7 +1,8 @@
 #ifndef VOXGI_VOXEL_CLIPMAP_GLSL
 #define VOXGI_VOXEL_CLIPMAP_GLSL
-// Clipmap addressing shared by every voxel family (the contract between voxelization, light
-// injection, filtering and cone tracing).
+// Contract: the voxel clipmap description and addressing shared by every voxel family
+// (voxelization, light injection, filtering, cone tracing, deferred voxel shading). C++ twin of
+// the VoxelClipmapInfo buffer: passes/contracts/voxel_clipmap.hpp (std430, 288 bytes).
 //
 // A clipmap resource is one 3D image of extent (R, R, R * L): level l occupies texels
 // z in [l * R, (l + 1) * R). Level 0 is the finest. Level l has voxels of edge

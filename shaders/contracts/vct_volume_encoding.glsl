@@ -1,8 +1,9 @@
 #ifndef VOXGI_VCT_VOLUME_ENCODING_GLSL
 #define VOXGI_VCT_VOLUME_ENCODING_GLSL
-// How vct.filter's volumes store a voxel, shared by the filter (which composites in
+// Contract: how vct.filter's volumes store a voxel, shared by the filter (which composites in
 // premultiplied-radiance / opacity form and converts when it stores and loads) and the cone
-// tracer (which reads the stored form through hardware trilinear filtering). No bindings.
+// tracers of every family (which read the stored form through hardware trilinear filtering).
+// No bindings.
 //
 // Stored: a = tau = -ln(1 - opacity), the optical depth of one voxel length, at most
 // VCT_MAX_OPTICAL_DEPTH; rgb = L * tau / VCT_MAX_OPTICAL_DEPTH, L the voxel's radiance.

@@ -1,0 +1,23 @@
+#include "passes/contracts/filtered_volumes.hpp"
+
+#include "engine/gpu/context.hpp"
+#include "engine/gpu/error.hpp"
+
+namespace voxgi::contracts {
+
+VolumeSampler::VolumeSampler(gpu::Context& context) : context_(context) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = VK_FILTER_LINEAR;
+  info.minFilter = VK_FILTER_LINEAR;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  info.maxLod = VK_LOD_CLAMP_NONE;
+  gpu::check(vkCreateSampler(context_.device(), &info, nullptr, &sampler_),
+             "vkCreateSampler (filtered volumes)");
+}
+
+VolumeSampler::~VolumeSampler() {
+  vkDestroySampler(context_.device(), sampler_, nullptr);
+}
+
+}  // namespace voxgi::contracts

@@ -1,0 +1,14 @@
+#pragma once
+// Contract: the voxel volumes common.voxelize writes and every voxel family reads. GLSL twin:
+// shaders/contracts/voxel_volumes.glsl, which documents what each channel holds and the
+// surface-plane encoding of the normal volume's w.
+
+#include <vulkan/vulkan.h>
+
+namespace voxgi::contracts {
+
+inline constexpr VkFormat kVoxelAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;
+inline constexpr VkFormat kVoxelNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kVoxelEmissionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+}  // namespace voxgi::contracts

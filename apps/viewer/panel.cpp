@@ -58,7 +58,7 @@ void ViewerApp::draw_panel() {
   if (header("Graphs", "graphs", true)) {
     for (size_t i = 0; i < slots_.size(); ++i) {
       char label[512];
-      std::snprintf(label, sizeof label, "%zu  %s", i + 1, slots_[i].file.filename().c_str());
+      std::snprintf(label, sizeof label, "%zu  %s", i + 1, slot_label(i).c_str());
       if (ImGui::RadioButton(label, active_ == i)) switch_graph(i);
       if (!slots_[i].error.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 110, 110, 255));
@@ -90,7 +90,7 @@ void ViewerApp::draw_panel() {
     draw_timings_table(active_);
     if ((split_ || difference_) && slots_.size() > 1 && compare_ != active_ &&
         slots_[compare_].instance) {
-      ImGui::Text("B: %s", slots_[compare_].file.filename().c_str());
+      ImGui::Text("B: %s", slot_label(compare_).c_str());
       draw_timings_table(compare_);
     }
   }

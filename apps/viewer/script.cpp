@@ -22,6 +22,7 @@ const std::map<std::string, Arity>& commands() {
       {"key", {1, 1, "key NAME"}},
       {"set", {1, 1, "set pass.param=value"}},
       {"graph", {1, 1, "graph N"}},
+      {"variant", {1, 1, "variant NAME|none"}},
       {"split", {1, 1, "split on|off"}},
       {"compare", {1, 1, "compare N"}},
       {"wipe", {1, 1, "wipe X (0..1)"}},

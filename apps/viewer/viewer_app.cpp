@@ -64,10 +64,25 @@ ViewerApp::ViewerApp(const ViewerOptions& options) : options_(options) {
   start_camera_ = runtime::choose_camera(scene, options_.camera);
   const std::map<std::string, std::string> overrides = runtime::parse_overrides(options_.sets);
   for (const std::string& graph : options_.graphs) {
+    // "FILE#VARIANT" shows one of the file's named variants: two slots of one file with
+    // different variants make an A/B of the variants.
+    const size_t hash = graph.rfind('#');
     GraphSlot slot;
-    slot.file = runtime::resolve_graph_path(graph);
-    graph::load_graph_file(slot.file);  // throws naming the file, line and field
+    slot.file = runtime::resolve_graph_path(graph.substr(0, hash));
+    const graph::GraphDesc desc = graph::load_graph_file(slot.file);  // throws naming the file
     slot.edits = overrides;
+    if (hash != std::string::npos) {
+      const std::string variant = graph.substr(hash + 1);
+      if (!desc.find_variant(variant)) {
+        std::string names;
+        for (const graph::VariantDesc& v : desc.variants)
+          names += (names.empty() ? "" : ", ") + v.name;
+        throw std::invalid_argument(
+            "--graph " + graph + ": " + slot.file.string() + " has no variant '" + variant + "' (" +
+            (names.empty() ? "it has none" : "its variants: " + names) + ")");
+      }
+      slot.edits[graph::kVariantKey] = variant;
+    }
     slots_.push_back(std::move(slot));
   }
   compare_ = slots_.size() > 1 ? 1 : 0;
@@ -179,6 +194,46 @@ bool ViewerApp::build(size_t index, bool reread_file) {
   }
 }
 
+std::string ViewerApp::slot_label(size_t index) const {
+  const GraphSlot& slot = slots_[index];
+  auto it = slot.edits.find(graph::kVariantKey);
+  std::string label = slot.file.filename().string();
+  if (it != slot.edits.end() && !it->second.empty()) label += " #" + it->second;
+  return label;
+}
+
+void ViewerApp::set_variant(size_t index, const std::string& variant) {
+  GraphSlot& slot = slots_[index];
+  const auto previous = slot.edits.find(graph::kVariantKey);
+  const std::string before = previous == slot.edits.end() ? std::string() : previous->second;
+  slot.edits[graph::kVariantKey] = variant;
+  if (!build(index, false)) {
+    slot.edits[graph::kVariantKey] = before;  // the last good build keeps running
+    throw std::runtime_error("variant '" + variant + "' failed to build: " + slot.error);
+  }
+  report("graph " + std::to_string(index + 1) + ": " + slot_label(index), false);
+}
+
+void ViewerApp::next_variant(size_t index) {
+  if (!slots_[index].instance) return;
+  const std::vector<std::string>& variants = slots_[index].instance->compiled().variants;
+  if (variants.empty()) {
+    report(slots_[index].file.string() + " names no variants", true);
+    return;
+  }
+  // The file as written, then each variant in file order, then the file again.
+  const std::string& current = slots_[index].instance->compiled().variant;
+  auto it = std::find(variants.begin(), variants.end(), current);
+  const std::string next = current.empty()            ? variants.front()
+                           : it + 1 == variants.end() ? std::string()
+                                                      : *(it + 1);
+  try {
+    set_variant(index, next);
+  } catch (const std::exception& e) {
+    report(e.what(), true);
+  }
+}
+
 void ViewerApp::switch_graph(size_t index) {
   if (index >= slots_.size()) {
     report("graph " + std::to_string(index + 1) + ": only " + std::to_string(slots_.size()) +
@@ -203,7 +258,7 @@ void ViewerApp::switch_graph(size_t index) {
     }
   }
   if (compare_ == active_ && slots_.size() > 1) compare_ = (active_ + 1) % slots_.size();
-  report("graph " + std::to_string(index + 1) + ": " + slots_[index].file.string(), false);
+  report("graph " + std::to_string(index + 1) + ": " + slot_label(index), false);
 }
 
 void ViewerApp::set_inspect(const std::string& resource) {
@@ -470,6 +525,9 @@ void ViewerApp::on_key(int key) {
     case GLFW_KEY_PERIOD:
       ++pending_steps_;
       break;
+    case GLFW_KEY_V:
+      next_variant(active_);
+      break;
     case GLFW_KEY_ESCAPE:
       quit_ = true;
       break;
@@ -635,6 +693,8 @@ void ViewerApp::run_command(const ScriptCommand& command) {
     switch_graph(static_cast<size_t>(n) - 1);
     if (!slots_[static_cast<size_t>(n) - 1].instance)
       throw std::runtime_error("the graph failed to build");
+  } else if (name == "variant") {
+    set_variant(active_, args[0] == "none" ? std::string() : args[0]);
   } else if (name == "split") {
     split_ = on_off(0);
   } else if (name == "compare") {

@@ -58,6 +58,11 @@ class ViewerApp {
   // Builds (or rebuilds) a slot; on failure keeps the previous instance and records the error.
   bool build(size_t slot, bool reread_file);
   void switch_graph(size_t slot);
+  // A named variant of the slot's graph file ("" for the file as written); throws when it
+  // does not build, leaving the last good build running.
+  void set_variant(size_t slot, const std::string& variant);
+  void next_variant(size_t slot);             // V: the file, its variants in order, the file again
+  std::string slot_label(size_t slot) const;  // "vct.json #half"
   void set_inspect(const std::string& resource);
   void set_param(size_t slot, const std::string& key, const std::string& value);
   void check_files();

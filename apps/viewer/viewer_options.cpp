@@ -17,15 +17,15 @@ uint32_t parse_size(const std::string& option, const std::string& text) {
 }  // namespace
 
 const char* viewer_usage() {
-  return "usage: voxgi-viewer [--scene cornell|PATH.gltf|PATH.glb] [--graph A.json [--graph B.json "
-         "...]]\n"
+  return "usage: voxgi-viewer [--scene cornell|PATH.gltf|PATH.glb] [--graph A.json[#VARIANT] "
+         "[--graph B.json ...]]\n"
          "                    [--script FILE] [--width W] [--height H] [--set pass.param=value "
          "...]\n"
          "                    [--camera NAME] [--device INDEX|NAME] [--out-dir DIR] "
          "[--validation]\n"
          "keys: 1..9 / Tab switch graph, F1 panel, F2 split A/B, F3 difference, F5 reload,\n"
          "      F12 screenshot, C fly/orbit, WASD QE move, right mouse look, left mouse orbit,\n"
-         "      Space play/pause, . step, R reset camera, Esc quit\n";
+         "      Space play/pause, . step, R reset camera, V next variant of the graph, Esc quit\n";
 }
 
 ViewerOptions parse_viewer_options(const std::vector<std::string>& args) {

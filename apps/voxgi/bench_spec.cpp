@@ -11,6 +11,7 @@
 
 #include "apps/voxgi/bench_hash.hpp"
 #include "apps/voxgi/cli_args.hpp"
+#include "engine/graph/graph_desc.hpp"
 #include "engine/graph/input_file.hpp"
 #include "engine/graph/json.hpp"
 #include "engine/scene/builtin_scenes.hpp"
@@ -433,7 +434,10 @@ class BenchParser {
 
 std::string BenchConfiguration::label(const BenchSpec& spec) const {
   std::string text = spec.graphs[graph].label;
-  for (const auto& [key, value] : swept) text += " " + key + "=" + value;
+  for (const auto& [key, value] : swept) {
+    // A sweep over variants may include the file as written ("").
+    text += " " + key + "=" + (key == graph::kVariantKey && value.empty() ? "none" : value);
+  }
   return text;
 }
 

@@ -21,6 +21,8 @@ Args graph_args(const std::string& verb) {
        {"width", true, false, "W", "viewport width for sizes (default 1280)"},
        {"height", true, false, "H", "viewport height for sizes (default 720)"},
        {"set", true, true, "KEY=VALUE", "override a graph or pass parameter"},
+       {"variant", true, false, "NAME",
+        "compile one of the graph file's named variants (check: default every variant too)"},
        {"dot", true, false, "PATH", "also write the compiled graph as Graphviz DOT"},
        {"dump-dir", true, false, "DIR", "write every compile phase (JSON, DOT) to DIR"},
        {"device", true, false, "INDEX|NAME",
@@ -82,6 +84,21 @@ int graph_command(const std::vector<std::string>& argv) {
                            : "; conditions on device features read them as absent, --device D "
                              "queries one")
               << ")\n";
+    // Without --variant, every variant the file names must compile too.
+    if (!options.overrides.count(graph::kVariantKey)) {
+      for (const graph::VariantDesc& variant : desc.variants) {
+        graph::CompileOptions with = options;
+        with.overrides[graph::kVariantKey] = variant.name;
+        try {
+          const graph::CompiledGraph v = graph::compile(desc, registry, with);
+          std::cout << desc.file << ": variant '" << variant.name << "': ok (" << v.passes.size()
+                    << " passes run, " << v.culled.size() << " culled)\n";
+        } catch (const graph::GraphError&) {
+          std::cerr << "voxgi: " << desc.file << ": variant '" << variant.name << "':\n";
+          throw;
+        }
+      }
+    }
   } else {
     std::cout << "scene: " << scene.source << "\n" << graph::explain(compiled);
   }

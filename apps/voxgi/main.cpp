@@ -38,6 +38,10 @@ graph::CompileOptions compile_options(const Args& args, const scene::Scene& scen
   options.viewport_height = height;
   options.scene_features = scene.features().as_map();
   options.overrides = parse_overrides(args.values("set"));
+  // --variant NAME is the override "variant" (graph_desc.hpp), so --set variant=NAME works too.
+  if (const std::optional<std::string> variant = args.value("variant")) {
+    options.overrides[graph::kVariantKey] = *variant;
+  }
   options.full_barriers = args.flag("full-barriers");
   options.alias_transients = !args.flag("no-memory-sharing");
   if (device) graph::use_device(options, *device);

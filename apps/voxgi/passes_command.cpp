@@ -45,6 +45,21 @@ std::string slots_text(const std::vector<graph::SlotSpec>& slots) {
   return text.empty() ? "-" : text;
 }
 
+// The outputs whose size the pass derives when the graph gives none.
+std::string sized_slots_text(const std::vector<graph::SlotSpec>& slots) {
+  std::string text;
+  for (const graph::SlotSpec& s : slots) {
+    if (s.size_rule) text += (text.empty() ? "" : ", ") + s.name;
+  }
+  return text;
+}
+
+// How a change of the parameter takes effect.
+const char* change_text(const graph::ParamSpec& p) {
+  if (p.sizes_outputs) return "recompile";
+  return p.live ? "yes" : "rebuild";
+}
+
 }  // namespace
 
 int passes_command(const std::vector<std::string>& argv) {
@@ -65,13 +80,17 @@ int passes_command(const std::vector<std::string>& argv) {
                 << info->doc << "\n\n"
                 << "inputs: " << slots_text(info->inputs)
                 << " — outputs: " << slots_text(info->outputs) << " (`?` optional)\n\n";
+      if (const std::string sized = sized_slots_text(info->outputs); !sized.empty()) {
+        std::cout << "sizes (and formats) it derives for outputs the graph leaves unsized: "
+                  << sized << "\n\n";
+      }
       if (!info->params.empty()) {
         std::cout << "| parameter | type | default | range | live | description |\n"
                   << "|---|---|---|---|---|---|\n";
         for (const graph::ParamSpec& p : info->params) {
           std::cout << "| `" << p.name << "` | " << graph::param_type_name(p.type) << " | "
-                    << default_text(p) << " | " << range_text(p) << " | "
-                    << (p.live ? "yes" : "rebuild") << " | " << p.doc << " |\n";
+                    << default_text(p) << " | " << range_text(p) << " | " << change_text(p) << " | "
+                    << p.doc << " |\n";
         }
         std::cout << "\n";
       }
@@ -80,11 +99,17 @@ int passes_command(const std::vector<std::string>& argv) {
     std::cout << info->type << " — " << info->doc << "\n"
               << "  inputs:  " << slots_text(info->inputs) << "\n"
               << "  outputs: " << slots_text(info->outputs) << "\n";
+    if (const std::string sized = sized_slots_text(info->outputs); !sized.empty()) {
+      std::cout << "  sizes:   " << sized << "\n";
+    }
     for (const graph::ParamSpec& p : info->params) {
       std::cout << "  " << p.name << " (" << graph::param_type_name(p.type) << ", default "
                 << default_text(p);
       if (const std::string range = range_text(p); !range.empty()) std::cout << ", " << range;
-      std::cout << (p.live ? "" : ", rebuilds") << "): " << p.doc << "\n";
+      std::cout << (p.sizes_outputs ? ", recompiles"
+                    : p.live        ? ""
+                                    : ", rebuilds")
+                << "): " << p.doc << "\n";
     }
   }
   return 0;

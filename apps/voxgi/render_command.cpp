@@ -37,6 +37,7 @@ Args render_args() {
        {"out", true, false, "PATH",
         "output stem: writes PATH.png and PATH.exr (default out/default)"},
        {"set", true, true, "KEY=VALUE", "override a graph or pass parameter (pass.param=value)"},
+       {"variant", true, false, "NAME", "render one of the graph file's named variants"},
        {"timings", true, false, "PATH.json",
         "write per-pass GPU/CPU times (medians after warm-up)"},
        {"device", true, false, "INDEX|NAME",

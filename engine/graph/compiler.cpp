@@ -142,11 +142,12 @@ class Compiler {
     graph_.viewport_height = options_.viewport_height;
     graph_.full_barriers = options_.full_barriers;
     resolve_device_features();
+    resolve_variant();
     resolve_parameters();
     expand_repeats();
     resolve_resources();
     resolve_passes();
-    apply_pass_overrides();
+    report_unmatched_overrides();
     check_skipping_passes_write_persistent();
     validate_passes();
     check_outputs_declared();
@@ -187,10 +188,55 @@ class Compiler {
     env.identifier_families["device."] = "device feature";
   }
 
+  // ---- variants ------------------------------------------------------------------------------
+  // The overrides in force: the selected variant's settings (located in the graph file), then
+  // the caller's own (--set), which win.
+  void resolve_variant() {
+    for (const VariantDesc& v : desc_.variants) graph_.variants.push_back(v.name);
+    for (const GraphParam& p : desc_.parameters) {
+      if (p.name == kVariantKey) {
+        diags_.error(p.loc, {}, "parameters." + p.name,
+                     "'variant' is reserved: it selects one of the graph's variants");
+      }
+    }
+    overrides_ = options_.overrides;
+    auto selected = overrides_.find(kVariantKey);
+    if (selected == overrides_.end()) return;
+    const std::string name = selected->second;
+    overrides_.erase(selected);
+    if (name.empty()) return;  // the file as written (a sweep over variants may include it)
+    const VariantDesc* variant = desc_.find_variant(name);
+    if (!variant) {
+      Diagnostic d;
+      d.loc = SourceLoc{desc_.file, 0, 0};
+      d.field = kVariantKey;
+      d.message = desc_.variants.empty()
+                      ? "graph has no variants, so there is no variant '" + name + "'"
+                      : "unknown variant '" + name +
+                            "' (the graph's variants: " + quoted_list(graph_.variants) + ")";
+      d.hint = did_you_mean(name, graph_.variants);
+      diags_.add(std::move(d));
+      return;
+    }
+    graph_.variant = name;
+    for (const VariantDesc::Setting& s : variant->settings) {
+      if (overrides_.count(s.key)) continue;  // the command line wins
+      overrides_[s.key] = s.value;
+      variant_locs_[s.key] = s.loc;
+    }
+  }
+
+  // Where an override was written: in the graph's variant, or on the command line.
+  SourceLoc override_loc(const std::string& key, const std::string& text) const {
+    auto it = variant_locs_.find(key);
+    if (it != variant_locs_.end()) return it->second;
+    return SourceLoc{"--set " + key + "=" + text, 0, 0};
+  }
+
   // ---- graph parameters and --set -------------------------------------------------------
   void resolve_parameters() {
     for (const GraphParam& p : desc_.parameters) graph_.parameters[p.name] = p.value;
-    for (const auto& [key, text] : options_.overrides) {
+    for (const auto& [key, text] : overrides_) {
       auto it = graph_.parameters.find(key);
       if (it == graph_.parameters.end()) continue;  // a pass parameter, resolved later
       const GraphParam* declared = nullptr;
@@ -212,10 +258,6 @@ class Compiler {
       }
       it->second = number;
     }
-  }
-
-  static SourceLoc override_loc(const std::string& key, const std::string& text) {
-    return SourceLoc{"--set " + key + "=" + text, 0, 0};
   }
 
   ExpressionEnv size_env(double viewport) const {
@@ -308,13 +350,151 @@ class Compiler {
   // ---- resources ------------------------------------------------------------------------
   void resolve_resources() {
     resource_ok_.assign(desc_.resources.size(), false);
+    sizing_.assign(desc_.resources.size(), Sizing::ByGraph);
     graph_.resources.resize(desc_.resources.size());
     for (size_t i = 0; i < desc_.resources.size(); ++i) {
-      resource_ok_[i] = resolve_resource(desc_.resources[i], graph_.resources[i]);
+      const ResourceDesc& rd = desc_.resources[i];
+      const bool sized =
+          rd.type == "clipmap" ? rd.resolution.present || rd.levels.present : !rd.size.empty();
+      const size_t problems = diags_.size();
+      resource_ok_[i] = resolve_resource(rd, graph_.resources[i], sized);
+      // A resource already in error (its type, its format) is not sized again by a writer.
+      if (!sized) sizing_[i] = diags_.size() == problems ? Sizing::ByWriter : Sizing::Failed;
     }
   }
 
-  bool resolve_resource(const ResourceDesc& rd, CompiledResource& r) {
+  // ---- sizes the writing pass derives -----------------------------------------------------
+  // A resource declared without a size takes the one its first writer's slot derives
+  // (SlotSpec::size_rule), once that pass's parameters are resolved.
+  void derive_sizes(const PassWork& w) {
+    const PassDesc& pd = *w.desc;
+    for (const BindingDesc& b : pd.outputs) {
+      const int index = resource_index(b.resource);
+      if (index < 0 || sizing_[static_cast<size_t>(index)] != Sizing::ByWriter) continue;
+      const auto i = static_cast<size_t>(index);
+      const SlotSpec* spec = find_slot(w.info->outputs, b.slot);
+      if (!spec) continue;  // reported with the bindings
+      const ResourceDesc& rd = desc_.resources[i];
+      CompiledResource& r = graph_.resources[i];
+      const std::string field = "resources." + rd.name;
+      const std::string what = rd.type == "clipmap" ? "'resolution' and 'levels'" : "'size'";
+      sizing_[i] = Sizing::Failed;
+      if (!spec->size_rule) {
+        diags_.error(rd.loc, {}, field,
+                     "no size given, and slot '" + b.slot + "' of its first writer, pass '" +
+                         pd.name + "' (type '" + pd.type + "'), does not derive one: give " + what);
+        continue;
+      }
+      SizeQuery query;
+      query.params = &w.params;
+      query.scene = &options_.scene_features;
+      query.viewport_width = options_.viewport_width;
+      query.viewport_height = options_.viewport_height;
+      query.bound = [&](std::string_view slot) -> const ResourceInfo* {
+        for (const auto* list : {&pd.inputs, &pd.outputs}) {
+          for (const BindingDesc& other : *list) {
+            if (other.slot != slot) continue;
+            const int o = resource_index(other.resource);
+            if (o < 0 || !resource_ok_[static_cast<size_t>(o)]) return nullptr;
+            return &graph_.resources[static_cast<size_t>(o)].info;
+          }
+        }
+        return nullptr;
+      };
+      query.has = [&](std::string_view slot) {
+        for (const auto* list : {&pd.inputs, &pd.outputs}) {
+          for (const BindingDesc& other : *list) {
+            if (other.slot == slot) return true;
+          }
+        }
+        return false;
+      };
+      if (rd.type != "buffer" && rd.format.empty()) {
+        // The graph may leave the format to a writer whose slot allows exactly one.
+        if (spec->formats.size() != 1) {
+          diags_.error(rd.loc, {}, field + ".format",
+                       "no format given, and slot '" + b.slot + "' of its first writer, pass '" +
+                           pd.name + "', does not name exactly one: give 'format'");
+          continue;
+        }
+        r.info.format = spec->formats.front();
+      }
+      const DerivedSize size = spec->size_rule(query);
+      if (!size.unavailable.empty()) {
+        diags_.error(rd.loc, {}, field,
+                     "no size given, and pass '" + pd.name + "' cannot derive one for slot '" +
+                         b.slot + "': " + size.unavailable + " (or give " + what + ")");
+        continue;
+      }
+      if (!apply_derived_size(rd, r, size, field, pd.name)) continue;
+      sizing_[i] = Sizing::Derived;
+      r.derived_by = pd.name;
+      resource_ok_[i] = resolve_mips_and_layers(rd, r, field, size.full_mips);
+      if (resource_ok_[i]) r.bytes = estimate_bytes(r.info);
+    }
+  }
+
+  bool apply_derived_size(const ResourceDesc& rd, CompiledResource& r, const DerivedSize& size,
+                          const std::string& field, const std::string& pass) {
+    const auto bad = [&](const std::string& what) {
+      diags_.error(rd.loc, {}, field, "pass '" + pass + "' derives " + what);
+      return false;
+    };
+    switch (r.info.kind) {
+      case ResourceKind::Buffer:
+        if (size.bytes == 0 || size.bytes > kMaxBufferBytes)
+          return bad("a buffer of " + std::to_string(size.bytes) + " bytes");
+        r.info.buffer_size = size.bytes;
+        return true;
+      case ResourceKind::Clipmap:
+        if (size.resolution == 0 || size.levels == 0 || size.levels > 16 ||
+            double(size.resolution) * size.levels > kMaxImageSize3D)
+          return bad("a clipmap of " + std::to_string(size.levels) + " levels of " +
+                     std::to_string(size.resolution) + "^3");
+        r.info.extent = {size.resolution, size.resolution, size.resolution * size.levels};
+        r.info.clipmap_levels = size.levels;
+        return true;
+      case ResourceKind::Image2D:
+      case ResourceKind::Image3D: {
+        const bool flat = r.info.kind == ResourceKind::Image2D;
+        const uint32_t depth = flat ? 1 : size.depth;
+        const double max = flat ? kMaxImageSize2D : kMaxImageSize3D;
+        if (size.width == 0 || size.height == 0 || depth == 0 || size.width > max ||
+            size.height > max || depth > max)
+          return bad("an image of " + std::to_string(size.width) + "x" +
+                     std::to_string(size.height) + (flat ? "" : "x" + std::to_string(depth)));
+        r.info.extent = {size.width, size.height, depth};
+        if (flat && size.layers > 0) r.info.array_layers = size.layers;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // A resource left without a size because nothing before its first reader sized it.
+  void report_unsized(size_t i, const std::string& pass, const SourceLoc& loc,
+                      const std::string& field) {
+    if (sizing_[i] != Sizing::ByWriter) return;
+    sizing_[i] = Sizing::Failed;
+    diags_.error(loc, pass, field,
+                 "resource '" + desc_.resources[i].name +
+                     "' has no size: it gives none, and no pass writing it comes before this "
+                     "one to derive it");
+  }
+
+  void report_never_sized() {
+    for (size_t i = 0; i < sizing_.size(); ++i) {
+      if (sizing_[i] != Sizing::ByWriter) continue;
+      const ResourceDesc& rd = desc_.resources[i];
+      diags_.error(rd.loc, {}, "resources." + rd.name,
+                   std::string("no size given, and no pass writes it to derive one: give ") +
+                       (rd.type == "clipmap" ? "'resolution' and 'levels'" : "'size'"));
+    }
+  }
+
+  // `sized`: the graph gives the size; otherwise only the rest is checked here and the
+  // writer derives the size (derive_sizes).
+  bool resolve_resource(const ResourceDesc& rd, CompiledResource& r, bool sized) {
     const std::string field = "resources." + rd.name;
     r.loc = rd.loc;
     r.info.name = rd.name;
@@ -343,6 +523,8 @@ class Compiler {
         diags_.error(rd.format_loc, {}, field + ".format", "buffers have no format");
         ok = false;
       }
+    } else if (rd.format.empty() && !sized) {
+      // Left to the writing pass with the size (derive_sizes).
     } else if (rd.format.empty()) {
       diags_.error(rd.loc, {}, field + ".format",
                    "missing field 'format' (expected one of " + quoted_list(format_names()) + ")");
@@ -359,8 +541,18 @@ class Compiler {
         ok = false;
       }
     }
+    if (!sized) {
+      for (const ExprField* f : {&rd.resolution, &rd.levels}) {
+        if (f->present && kind != ResourceKind::Clipmap) {
+          diags_.error(f->loc, {}, field + (f == &rd.resolution ? ".resolution" : ".levels"),
+                       "only clipmaps have 'resolution' and 'levels' (use 'size')");
+          ok = false;
+        }
+      }
+      return false;  // not usable until its writer sizes it
+    }
     ok = resolve_extent(rd, r, field) && ok;
-    ok = resolve_mips_and_layers(rd, r, field) && ok;
+    ok = resolve_mips_and_layers(rd, r, field, false) && ok;
     if (ok) r.bytes = estimate_bytes(r.info);
     return ok;
   }
@@ -444,8 +636,9 @@ class Compiler {
     return true;
   }
 
+  // `full_mips`: a full chain unless the graph gives 'mips' (a derived size may ask for it).
   bool resolve_mips_and_layers(const ResourceDesc& rd, CompiledResource& r,
-                               const std::string& field) {
+                               const std::string& field, bool full_mips) {
     const ResourceKind kind = r.info.kind;
     if (kind == ResourceKind::Buffer) {
       for (const ExprField* f : {&rd.mips, &rd.layers}) {
@@ -466,6 +659,7 @@ class Compiler {
       largest >>= 1;
       ++full_chain;
     }
+    if (!rd.mips.present && full_mips) r.info.mip_levels = full_chain;
     if (rd.mips.present) {
       if (!rd.mips.is_number && rd.mips.text == "full") {
         r.info.mip_levels = full_chain;
@@ -533,12 +727,15 @@ class Compiler {
       }
       if (w.info) {
         resolve_params(w);
+        apply_pass_overrides(w);
+        derive_sizes(w);
         resolve_bindings(w);
       }
       resolve_when(w);
       w.usable = w.info && unique;
       work_.push_back(std::move(w));
     }
+    report_never_sized();
   }
 
   ExpressionEnv param_env() const {
@@ -662,7 +859,10 @@ class Compiler {
                        did_you_mean(b.resource, resource_names()));
           continue;
         }
-        if (!resource_ok_[static_cast<size_t>(index)]) continue;  // already reported
+        if (!resource_ok_[static_cast<size_t>(index)]) {
+          report_unsized(static_cast<size_t>(index), pd.name, b.loc, field);
+          continue;  // otherwise already reported
+        }
         const ResourceInfo& info = graph_.resources[static_cast<size_t>(index)].info;
         if (!(spec->kinds & static_cast<uint32_t>(info.kind))) {
           diags_.error(b.loc, pd.name, field,
@@ -764,42 +964,46 @@ class Compiler {
     return features;
   }
 
-  void apply_pass_overrides() {
-    for (const auto& [key, text] : options_.overrides) {
+  // The overrides that name this pass's parameters, applied before its sizes are derived.
+  void apply_pass_overrides(PassWork& w) {
+    const std::string& name = w.desc->name;
+    for (const auto& [key, text] : overrides_) {
       if (graph_.parameters.count(key)) continue;
-      bool matched = false;
-      for (PassWork& w : work_) {
-        const std::string& name = w.desc->name;
-        if (!w.info || key.size() <= name.size() + 1 || key.compare(0, name.size(), name) != 0 ||
-            key[name.size()] != '.') {
-          continue;
-        }
-        const ParamSpec* spec = find_param(*w.info, key.substr(name.size() + 1));
-        if (!spec) continue;
-        matched = true;
-        w.param_locs[spec->name] = override_loc(key, text);
-        try {
-          w.params[spec->name] = parse_param_value(*spec, key, text);
-        } catch (const GraphError& e) {
-          for (const Diagnostic& d : e.diagnostics()) {
-            diags_.error(override_loc(key, text), name, key, d.message, d.hint);
-          }
+      if (key.size() <= name.size() + 1 || key.compare(0, name.size(), name) != 0 ||
+          key[name.size()] != '.') {
+        continue;
+      }
+      const ParamSpec* spec = find_param(*w.info, key.substr(name.size() + 1));
+      if (!spec) continue;
+      matched_overrides_.insert(key);
+      w.param_locs[spec->name] = override_loc(key, text);
+      try {
+        w.params[spec->name] = parse_param_value(*spec, key, text);
+      } catch (const GraphError& e) {
+        for (const Diagnostic& d : e.diagnostics()) {
+          diags_.error(override_loc(key, text), name, key, d.message, d.hint);
         }
       }
-      if (!matched) {
-        std::vector<std::string> candidates;
-        for (const auto& [param, value] : graph_.parameters) candidates.push_back(param);
-        for (const PassWork& w : work_) {
-          if (!w.info) continue;
-          for (const ParamSpec& spec : w.info->params) {
-            candidates.push_back(w.desc->name + "." + spec.name);
-          }
+    }
+  }
+
+  void report_unmatched_overrides() {
+    for (const auto& [key, text] : overrides_) {
+      if (graph_.parameters.count(key) || matched_overrides_.count(key)) continue;
+      std::vector<std::string> candidates;
+      for (const auto& [param, value] : graph_.parameters) candidates.push_back(param);
+      for (const PassWork& w : work_) {
+        if (!w.info) continue;
+        for (const ParamSpec& spec : w.info->params) {
+          candidates.push_back(w.desc->name + "." + spec.name);
         }
-        diags_.error(
-            override_loc(key, text), {}, key,
-            "unknown --set key '" + key + "' (expected a graph parameter or 'pass.parameter')",
-            did_you_mean(key, candidates));
       }
+      const std::string source = variant_locs_.count(key)
+                                     ? "key '" + key + "' of variant '" + graph_.variant + "'"
+                                     : "--set key '" + key + "'";
+      diags_.error(override_loc(key, text), {}, key,
+                   "unknown " + source + " (expected a graph parameter or 'pass.parameter')",
+                   did_you_mean(key, candidates));
     }
   }
 
@@ -1169,7 +1373,12 @@ class Compiler {
   }
 
   const GraphDesc& desc_;
-  std::vector<PassDesc> passes_;  // desc_.passes with repeats expanded
+  std::map<std::string, std::string> overrides_;   // the variant's and the caller's
+  std::map<std::string, SourceLoc> variant_locs_;  // overrides the variant set, by key
+  std::set<std::string> matched_overrides_;        // pass parameter overrides applied
+  std::vector<PassDesc> passes_;                   // desc_.passes with repeats expanded
+  enum class Sizing { ByGraph, ByWriter, Derived, Failed };
+  std::vector<Sizing> sizing_;  // per resource
   const Registry& registry_;
   const CompileOptions& options_;
   DiagnosticList diags_;

@@ -24,7 +24,8 @@ struct CompileOptions {
   // then reads as absent, and the reasons of passes culled by one say so.
   std::map<std::string, double> device_features;
   std::string device_name;
-  std::map<std::string, std::string> overrides;  // --set key=value
+  // --set key=value; "variant" selects one of the graph's variants, whose settings apply first.
+  std::map<std::string, std::string> overrides;
   bool full_barriers = false;    // a full memory barrier before every pass (rules out sync bugs)
   bool alias_transients = true;  // let same-description transients with disjoint lives share
 };
@@ -110,6 +111,7 @@ struct CompiledResource {
   int last_pass = -1;
   uint64_t bytes = 0;  // estimated
   bool is_output = false;
+  std::string derived_by;  // the pass whose slot derived the size, when the graph gave none
   // Carried between frames: persistent. A transient's first use in a frame writes it.
   bool carries_contents = false;
   // State per mip (one entry for buffers) at the end of a frame, after output transitions.
@@ -133,6 +135,8 @@ struct CompiledGraph {
   uint32_t viewport_height = 0;
   bool full_barriers = false;
   std::map<std::string, double> parameters;  // graph parameters after overrides
+  std::string variant;                       // the variant compiled; empty: the file as written
+  std::vector<std::string> variants;         // every variant the file names
   // Device features as conditions read them, and whether they came from a device (false:
   // compiled without one, every feature absent).
   std::map<std::string, double> device_features;

@@ -36,6 +36,13 @@ Diagnostic message_only(std::string message, std::string hint = {});
 // "  included from file:line:col" line per level when the location is inside a fragment.
 std::string format(const Diagnostic& d);
 
+// Executor::set_param for a parameter that sizes the pass's outputs (ParamSpec::sizes_outputs):
+// the change needs the graph compiled again (runtime::GraphInstance::set_param does that).
+class ParamNeedsRecompile : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class GraphError : public std::runtime_error {
  public:
   explicit GraphError(std::vector<Diagnostic> diagnostics);

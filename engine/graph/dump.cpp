@@ -186,6 +186,13 @@ std::string explain(const CompiledGraph& g) {
   std::ostringstream out;
   out << "graph '" << g.name << "' (" << g.file << "), viewport " << g.viewport_width << "x"
       << g.viewport_height << (g.full_barriers ? ", full barriers" : "") << "\n";
+  if (!g.variants.empty()) {
+    out << "variant: "
+        << (g.variant.empty() ? std::string("none (the file as written)") : g.variant)
+        << "; the file's variants:";
+    for (const std::string& v : g.variants) out << " " << v;
+    out << " (--variant NAME)\n";
+  }
   if (!g.parameters.empty()) {
     out << "\nparameters:\n";
     for (const auto& [name, value] : g.parameters) {
@@ -264,6 +271,7 @@ std::string explain(const CompiledGraph& g) {
     if (i.kind != ResourceKind::Buffer)
       out << ", mips " << i.mip_levels << ", layers " << i.array_layers;
     if (i.persistent) out << ", persistent";
+    if (!r.derived_by.empty()) out << ", sized by pass '" << r.derived_by << "'";
     if (r.physical < 0) {
       out << ", unused\n";
       continue;
@@ -350,6 +358,8 @@ Json desc_to_json(const GraphDesc& d) {
 Json resolved_to_json(const CompiledGraph& g) {
   Json j;
   j["parameters"] = g.parameters;
+  j["variant"] = g.variant;
+  j["variants"] = g.variants;
   j["device"] = {
       {"queried", g.device_queried}, {"name", g.device_name}, {"features", g.device_features}};
   j["device_conditions"] = Json::array();
@@ -444,6 +454,7 @@ Json resources_to_json(const CompiledGraph& g) {
                                   {"image_usage", r.image_usage},
                                   {"buffer_usage", r.buffer_usage},
                                   {"bytes", r.bytes},
+                                  {"sized_by", r.derived_by},
                                   {"end_layouts", end}});
   }
   j["physical"] = Json::array();

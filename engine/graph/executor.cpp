@@ -585,6 +585,10 @@ bool Executor::set_param(const std::string& key, const std::string& value) {
     for (const ParamSpec& spec : pass.type_info->params) {
       candidates.push_back(pass.name + "." + spec.name);
       if (key != pass.name + "." + spec.name) continue;
+      if (spec.sizes_outputs) {
+        throw ParamNeedsRecompile("parameter '" + key +
+                                  "' sizes the pass's outputs: compile the graph again with it");
+      }
       const ParamValue previous = pass.params[spec.name];
       pass.params[spec.name] = parse_param_value(spec, key, value);
       if (std::vector<Diagnostic> problems = validate_pass(pass); !problems.empty()) {

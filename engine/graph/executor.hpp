@@ -69,7 +69,8 @@ class Executor {
   std::vector<float> read_output(const std::string& output, uint32_t& width, uint32_t& height);
 
   // "pass.param" at run time, checked against the pass type (throws GraphError naming the
-  // key). Returns true when applied live; false when the pass's setup() was re-run.
+  // key). Returns true when applied live; false when the pass's setup() was re-run. Throws
+  // ParamNeedsRecompile for a parameter that sizes the pass's outputs.
   bool set_param(const std::string& key, const std::string& value);
 
   // nullptr when the resource does not exist or no live pass uses it.

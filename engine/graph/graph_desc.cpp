@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -18,7 +19,25 @@ const ResourceDesc* GraphDesc::find_resource(std::string_view resource_name) con
   return nullptr;
 }
 
+const VariantDesc* GraphDesc::find_variant(std::string_view variant_name) const {
+  for (const VariantDesc& v : variants) {
+    if (v.name == variant_name) return &v;
+  }
+  return nullptr;
+}
+
 namespace {
+
+// A number as --set would write it: integers without a fraction, others round-tripping.
+std::string number_text(double value) {
+  char text[32];
+  if (value == std::floor(value) && std::fabs(value) < 1e15) {
+    std::snprintf(text, sizeof(text), "%.0f", value);
+  } else {
+    std::snprintf(text, sizeof(text), "%.17g", value);
+  }
+  return text;
+}
 
 void add_family(const std::string& type, std::set<std::string>& names) {
   const size_t dot = type.find('.');
@@ -143,6 +162,54 @@ class DescParser {
         continue;
       }
       desc.parameters.push_back(std::move(p));
+    }
+  }
+
+  void parse_variants(const Value& v, GraphDesc& desc) {
+    if (!expect(v, Value::Kind::Object, {}, "variants", "an object of name: {\"set\": {...}}"))
+      return;
+    for (const Member& m : v.members()) {
+      const std::string field = "variants." + m.key;
+      if (!expect(m.value, Value::Kind::Object, {}, field, "an object {\"doc\", \"set\"}"))
+        continue;
+      check_keys(m.value, keys({"doc", "set"}), {}, field + ".");
+      VariantDesc variant;
+      variant.name = m.key;
+      variant.loc = m.key_loc;
+      if (const Value* d = m.value.find("doc")) {
+        if (expect(*d, Value::Kind::String, {}, field + ".doc", "a string"))
+          variant.doc = d->as_string();
+      }
+      const Value* set = m.value.find("set");
+      if (!set) {
+        diags_.error(m.value.loc(), {}, field + ".set",
+                     "missing (the overrides the variant applies, {\"pass.param\": value})");
+        continue;
+      }
+      if (!expect(*set, Value::Kind::Object, {}, field + ".set", "an object of key: value"))
+        continue;
+      for (const Member& s : set->members()) {
+        std::string value;
+        if (s.value.is_string()) {
+          value = s.value.as_string();
+        } else if (s.value.is_bool()) {
+          value = s.value.as_bool() ? "true" : "false";
+        } else if (s.value.is_number()) {
+          value = number_text(s.value.as_number());
+        } else {
+          diags_.error(s.value.loc(), {}, field + ".set." + s.key,
+                       std::string("expected a number, string or boolean, found ") +
+                           json::kind_name(s.value.kind()));
+          continue;
+        }
+        if (s.key == kVariantKey) {
+          diags_.error(s.key_loc, {}, field + ".set." + s.key,
+                       "a variant cannot select another variant");
+          continue;
+        }
+        variant.settings.push_back({s.key, std::move(value), s.value.loc()});
+      }
+      desc.variants.push_back(std::move(variant));
     }
   }
 
@@ -346,10 +413,10 @@ GraphDesc parse_graph(std::string_view text, std::string file_name) {
                     json::kind_name(root.kind()));
     diags.throw_if_any();
   }
-  parser.check_keys(
-      root,
-      keys({"name", "doc", "parameters", "indirect", "resources", "passes", "outputs", "output"}),
-      {}, {});
+  parser.check_keys(root,
+                    keys({"name", "doc", "parameters", "indirect", "variants", "resources",
+                          "passes", "outputs", "output"}),
+                    {}, {});
   if (const Value* n = root.find("name")) {
     if (parser.expect(*n, Value::Kind::String, {}, "name", "a string")) desc.name = n->as_string();
   }
@@ -358,6 +425,7 @@ GraphDesc parse_graph(std::string_view text, std::string file_name) {
   }
   if (const Value* p = root.find("parameters")) parser.parse_parameters(*p, desc);
   if (const Value* i = root.find("indirect")) parser.parse_indirect(*i, desc);
+  if (const Value* v = root.find("variants")) parser.parse_variants(*v, desc);
   if (const Value* r = root.find("resources")) {
     if (parser.expect(*r, Value::Kind::Object, {}, "resources", "an object")) {
       for (const Member& m : r->members()) parser.parse_resource(m, desc);

@@ -109,6 +109,24 @@ struct IndirectDesc {
   SourceLoc loc;
 };
 
+// A named variant of the graph: overrides applied as `--set` would apply them (before the
+// command line's own). "variants": {"isotropic": {"doc": "...", "set": {"filter.mode":
+// "isotropic"}}}. Compile one with CompileOptions::overrides["variant"] (`--variant NAME`).
+struct VariantDesc {
+  struct Setting {
+    std::string key;  // a graph parameter or "pass.param"
+    std::string value;
+    SourceLoc loc;  // of the value
+  };
+  std::string name;
+  SourceLoc loc;
+  std::string doc;
+  std::vector<Setting> settings;
+};
+
+// The override key that selects a variant.
+inline constexpr const char* kVariantKey = "variant";
+
 struct GraphDesc {
   std::string file;
   std::string name;
@@ -118,9 +136,11 @@ struct GraphDesc {
   std::vector<PassDesc> passes;  // in file order
   std::vector<OutputDesc> outputs;
   IndirectDesc indirect;
+  std::vector<VariantDesc> variants;        // in file order
   std::vector<std::string> included_files;  // the fragments it was composed from
 
   const ResourceDesc* find_resource(std::string_view name) const;
+  const VariantDesc* find_variant(std::string_view name) const;
   // The pass families named by pass types "family.pass", sorted, each once.
   std::vector<std::string> families() const;
 };

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -35,7 +36,7 @@ class GpuBvh;
 namespace voxgi::graph {
 
 // Bumped whenever PassTypeInfo, Pass, PassContext or Registry change layout or meaning.
-inline constexpr uint32_t kPluginAbiVersion = 3;
+inline constexpr uint32_t kPluginAbiVersion = 4;
 
 enum class ParamType { Bool, Int, Float, Enum };
 // "bool", "int", "float" or "enum".
@@ -51,6 +52,9 @@ struct ParamSpec {
   std::string doc;
   // false: a change re-runs the pass's setup() (e.g. it changes a shader define).
   bool live = true;
+  // A slot's size rule reads it: a change takes a recompile (Executor::set_param refuses it
+  // with ParamNeedsRecompile; --set and the viewer rebuild the graph).
+  bool sizes_outputs = false;
 };
 
 struct ParamValue {
@@ -93,6 +97,41 @@ enum Stage : uint32_t {
   kStageTransfer = 16,
 };
 
+struct ResourceInfo;
+
+// What a slot's size rule sees while the graph compiles: the pass's parameters as resolved,
+// the resources bound to its other slots (those already sized), scene features and the
+// viewport.
+struct SizeQuery {
+  const std::map<std::string, ParamValue>* params = nullptr;
+  std::function<const ResourceInfo*(std::string_view slot)> bound;  // nullptr: unbound/unsized
+  std::function<bool(std::string_view slot)> has;                   // bound, sized or not
+  const std::map<std::string, double>* scene = nullptr;             // "scene.light_count" → n
+  uint32_t viewport_width = 0;
+  uint32_t viewport_height = 0;
+
+  double number(std::string_view param) const;
+  std::string choice(std::string_view param) const;    // an enum's choice; empty when absent
+  double scene_value(std::string_view feature) const;  // 0 when absent
+};
+
+// The size an output needs, for a resource the graph declares without one. Only the fields of
+// the resource's kind are read; what the graph does give (mips, layers) wins.
+struct DerivedSize {
+  VkDeviceSize bytes = 0;                     // buffer
+  uint32_t width = 0, height = 0, depth = 0;  // image2d (depth unused), image3d
+  uint32_t layers = 0;                        // image2d array layers; 0: one
+  uint32_t resolution = 0, levels = 0;        // clipmap
+  bool full_mips = false;                     // a full mip chain unless the graph says
+  std::string unavailable;                    // non-empty: why it cannot be derived
+};
+using SizeRule = std::function<DerivedSize(const SizeQuery&)>;
+
+// Size rules for common cases: the viewport (or a fraction of it), and the same layout as the
+// resource bound to another slot (a clipmap's resolution and levels, an image's extent).
+SizeRule viewport_size(uint32_t divisor = 1);
+SizeRule same_layout_as(std::string slot, bool full_mips = false);
+
 struct SlotSpec {
   std::string name;
   ResourceKinds kinds = 0;
@@ -105,10 +144,18 @@ struct SlotSpec {
   // transient even when the pass may skip or read-modify-writes it, so the pass must not rely
   // on earlier contents unless the resource is persistent.
   bool scratch = false;
+  // Outputs only: the size the pass needs, used when the graph declares the resource without
+  // one (docs/design.md, "Pass-owned sizes"). May be empty.
+  SizeRule size_rule;
 };
 
 struct CompiledPass;
 class PassCheck;
+struct PassTypeInfo;
+
+// Gives the output slot `slot` of `info` a size rule; throws std::logic_error when the type has
+// no such output (a mistake in the pass type's registration).
+void set_size_rule(PassTypeInfo& info, std::string_view slot, SizeRule rule);
 
 // Checks of a pass's parameters and bound slots that the declarations cannot express; the
 // compiler runs it for every pass of a graph file, so problems show up in `voxgi graph check`.

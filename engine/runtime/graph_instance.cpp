@@ -28,18 +28,28 @@ GraphInstance::GraphInstance(Runtime& runtime, graph::GraphDesc desc, GraphSetti
     compiled_desc.outputs.push_back(output);
   }
   runtime_.load_plugins_for(compiled_desc);
-  graph::CompileOptions options;
-  options.viewport_width = settings_.width;
-  options.viewport_height = settings_.height;
-  options.scene_features = runtime_.scene().features().as_map();
-  graph::use_device(options, runtime_.context());
-  options.overrides = settings_.overrides;
-  options.full_barriers = settings_.full_barriers;
-  options.alias_transients = settings_.alias_transients;
-  const graph::CompiledGraph compiled = graph::compile(compiled_desc, runtime_.registry(), options);
   executor_ = std::make_unique<graph::Executor>(runtime_.context(), runtime_.shaders(),
                                                 runtime_.registry());
-  executor_->build(compiled, runtime_.scene(), runtime_.gpu_scene());
+  executor_->build(compile(settings_), runtime_.scene(), runtime_.gpu_scene());
+}
+
+graph::CompiledGraph GraphInstance::compile(const GraphSettings& settings) const {
+  graph::GraphDesc compiled_desc = desc_;
+  for (const auto& [name, resource] : settings.extra_outputs) {
+    graph::OutputDesc output;
+    output.name = name;
+    output.resource = resource;
+    compiled_desc.outputs.push_back(output);
+  }
+  graph::CompileOptions options;
+  options.viewport_width = settings.width;
+  options.viewport_height = settings.height;
+  options.scene_features = runtime_.scene().features().as_map();
+  graph::use_device(options, runtime_.context());
+  options.overrides = settings.overrides;
+  options.full_barriers = settings.full_barriers;
+  options.alias_transients = settings.alias_transients;
+  return graph::compile(compiled_desc, runtime_.registry(), options);
 }
 
 GraphInstance::~GraphInstance() = default;
@@ -76,9 +86,21 @@ const std::vector<graph::Executor::PassTiming>& GraphInstance::timings() const {
 }
 
 bool GraphInstance::set_param(const std::string& key, const std::string& value) {
-  const bool live = executor_->set_param(key, value);
-  settings_.overrides[key] = value;
-  return live;
+  try {
+    const bool live = executor_->set_param(key, value);
+    settings_.overrides[key] = value;
+    return live;
+  } catch (const graph::ParamNeedsRecompile&) {
+    // The parameter sizes resources: compile again; the executor keeps the persistent
+    // resources whose description did not change. A failed compile changes nothing.
+    GraphSettings changed = settings_;
+    changed.overrides[key] = value;
+    graph::CompiledGraph compiled = compile(changed);
+    executor_->build(compiled, runtime_.scene(), runtime_.gpu_scene());
+    settings_ = std::move(changed);
+    frames_ = 0;  // the next frame recomputes what the new sizes invalidated
+    return false;
+  }
 }
 
 const graph::ParamValue* GraphInstance::param(const std::string& pass,

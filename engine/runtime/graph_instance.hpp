@@ -72,7 +72,8 @@ class GraphInstance {
   const std::vector<graph::Executor::PassTiming>& timings() const;
 
   // A pass parameter changed live ("pass.param"); remembered so that a rebuild keeps it.
-  // Returns true when applied without re-running the pass's setup. Throws graph::GraphError.
+  // Returns true when applied without re-running the pass's setup. A parameter that sizes
+  // resources compiles the graph again. Throws graph::GraphError.
   bool set_param(const std::string& key, const std::string& value);
   // The current value of a pass parameter as compiled and since edited.
   const graph::ParamValue* param(const std::string& pass, const std::string& name) const;
@@ -84,6 +85,8 @@ class GraphInstance {
   uint64_t frames_rendered() const { return frames_; }
 
  private:
+  graph::CompiledGraph compile(const GraphSettings& settings) const;
+
   Runtime& runtime_;
   graph::GraphDesc desc_;
   GraphSettings settings_;

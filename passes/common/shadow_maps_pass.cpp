@@ -240,6 +240,16 @@ void register_shadow_maps(graph::Registry& registry) {
        64.0,
        {},
        "lights (in scene order) that get shadow maps; the image's layers / 6 limit it too",
+       false,
+       true},
+      {"resolution",
+       graph::ParamType::Int,
+       1024.0,
+       16.0,
+       16384.0,
+       {},
+       "edge of each shadow map face in texels, for maps the graph declares without a size",
+       false,
        true},
       {"depth_bias",
        graph::ParamType::Float,
@@ -251,6 +261,24 @@ void register_shadow_maps(graph::Registry& registry) {
        true},
       {"slope_bias", graph::ParamType::Float, 2.0, 0.0, 100.0, {}, "slope-scaled depth bias", true},
   };
+  // Six layers and one ShadowLight record per shadowed light present (at least one, so a
+  // scene without lights still binds valid resources).
+  const auto shadowed_lights = [](const graph::SizeQuery& query) {
+    const double present =
+        std::min(query.scene_value("scene.light_count"), query.number("max_lights"));
+    return static_cast<uint32_t>(std::max(1.0, present));
+  };
+  graph::set_size_rule(info, "maps", [shadowed_lights](const graph::SizeQuery& query) {
+    graph::DerivedSize size;
+    size.width = size.height = static_cast<uint32_t>(query.number("resolution"));
+    size.layers = contracts::kShadowFacesPerLight * shadowed_lights(query);
+    return size;
+  });
+  graph::set_size_rule(info, "matrices", [shadowed_lights](const graph::SizeQuery& query) {
+    graph::DerivedSize size;
+    size.bytes = contracts::kShadowLightBytes * shadowed_lights(query);
+    return size;
+  });
   info.may_skip = true;
   registry.add(std::move(info), [] { return std::make_unique<ShadowMapsPass>(); });
 }

@@ -73,11 +73,46 @@ uint32_t scratch_words_per_voxel(const graph::PassDeclaration& pass) {
   return pass.has("emission") ? kHdrWordsWithEmission : kHdrWords;
 }
 
+// The clipmaps' size from parameters "resolution" and "levels", for a graph that leaves the
+// volumes' size to this pass; 0 in either means the graph sizes them.
+graph::DerivedSize clipmap_size(const graph::SizeQuery& query) {
+  graph::DerivedSize size;
+  size.resolution = static_cast<uint32_t>(query.number("resolution"));
+  size.levels = static_cast<uint32_t>(query.number("levels"));
+  if (size.resolution == 0 || size.levels == 0) {
+    size.unavailable = "its parameters 'resolution' and 'levels' are not set";
+  }
+  return size;
+}
+
+// R^3 accumulation records: a whole level voxelizes in one go.
+graph::DerivedSize scratch_size(const graph::SizeQuery& query) {
+  graph::DerivedSize size = clipmap_size(query);
+  if (!size.unavailable.empty()) return size;
+  const uint32_t words = query.choice("strategy") == "average_rgba8"
+                             ? kRgba8Words
+                             : (query.has("emission") ? kHdrWordsWithEmission : kHdrWords);
+  size.bytes = VkDeviceSize(size.resolution) * size.resolution * size.resolution * words * 4;
+  return size;
+}
+
 // What the device cannot change: clipmap shape, matching volumes, buffer sizes.
 void validate_voxelize(graph::PassCheck& check) {
   const graph::ResourceInfo& albedo = check.info("albedo");
   const uint32_t resolution = albedo.extent.width;
   const uint32_t levels = albedo.clipmap_levels;
+  const int wanted_resolution = check.integer("resolution");
+  const int wanted_levels = check.integer("levels");
+  if ((wanted_resolution != 0 && uint32_t(wanted_resolution) != resolution) ||
+      (wanted_levels != 0 && uint32_t(wanted_levels) != levels)) {
+    check.slot_error("albedo",
+                     "clipmap '" + albedo.name + "' is declared with " + std::to_string(levels) +
+                         " levels of " + std::to_string(resolution) +
+                         "^3, but the pass's parameters ask for " + std::to_string(wanted_levels) +
+                         " of " + std::to_string(wanted_resolution) +
+                         "^3: leave the clipmaps' size to the pass (no 'resolution' or "
+                         "'levels' in the graph) or set the parameters to 0");
+  }
   if (levels < 1 || levels > contracts::kVoxelMaxLevels) {
     check.slot_error("albedo", "clipmap '" + albedo.name + "' has " + std::to_string(levels) +
                                    " levels; 1 to " + std::to_string(contracts::kVoxelMaxLevels) +
@@ -506,6 +541,26 @@ void register_voxelize(graph::Registry& registry) {
        true},
   };
   info.params = {
+      {"resolution",
+       graph::ParamType::Int,
+       0.0,
+       0.0,
+       1024.0,
+       {},
+       "voxels along a clipmap level's edge (a power of two, at least 8), for clipmaps the "
+       "graph declares without a size; 0: the graph sizes them",
+       false,
+       true},
+      {"levels",
+       graph::ParamType::Int,
+       0.0,
+       0.0,
+       double(contracts::kVoxelMaxLevels),
+       {},
+       "clipmap levels (1: one dense volume fitted to the scene), for clipmaps the graph "
+       "declares without a size; 0: the graph sizes them",
+       false,
+       true},
       {"voxel_size",
        graph::ParamType::Float,
        0.0,
@@ -543,6 +598,15 @@ void register_voxelize(graph::Registry& registry) {
        "what the windows centre on: auto = the scene for one level, the camera for several",
        false},
   };
+  graph::set_size_rule(info, "clipmap_info", [](const graph::SizeQuery&) {
+    graph::DerivedSize size;
+    size.bytes = contracts::kVoxelClipmapInfoBytes;
+    return size;
+  });
+  for (const char* volume : {"albedo", "normal", "emission"}) {
+    graph::set_size_rule(info, volume, clipmap_size);
+  }
+  graph::set_size_rule(info, "scratch", scratch_size);
   info.may_skip = true;
   info.validate = validate_voxelize;
   registry.add(std::move(info), [] { return std::make_unique<VoxelizePass>(); });

@@ -200,6 +200,7 @@ void register_voxel_bounce(graph::Registry& registry) {
        "distance skipped at the start of each cone, in voxels (self-occlusion)",
        true},
   };
+  graph::set_size_rule(info, "radiance", graph::same_layout_as("direct"));
   info.may_skip = true;
   info.validate = validate_voxel_bounce;
   registry.add(std::move(info), [] { return std::make_unique<VoxelBouncePass>(); });

@@ -181,6 +181,8 @@ void register_voxel_lighting(graph::Registry& registry) {
        "voxel rays: most samples per ray (half a voxel apart)",
        true},
   };
+  graph::set_size_rule(info, "radiance", graph::same_layout_as("albedo"));
+  graph::set_size_rule(info, "direct", graph::same_layout_as("albedo"));
   info.may_skip = true;
   info.validate = validate_voxel_lighting;
   registry.add(std::move(info), [] { return std::make_unique<VoxelLightingPass>(); });

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "engine/gpu/buffer.hpp"
 #include "engine/gpu/context.hpp"
@@ -169,6 +171,10 @@ void register_filter(graph::Registry& registry) {
                   "isotropic: one box-filtered volume; anisotropic: six directional volumes "
                   "(front-to-back along each axis), needs the six pos_x..neg_z outputs",
                   false}};
+  // The volumes take the radiance clipmap's layout, with full mip chains.
+  for (const graph::SlotSpec& slot : std::vector<graph::SlotSpec>(info.outputs)) {
+    graph::set_size_rule(info, slot.name, graph::same_layout_as("radiance", true));
+  }
   info.may_skip = true;
   info.validate = validate_filter;
   registry.add(std::move(info), [] { return std::make_unique<FilterPass>(); });

@@ -133,6 +133,7 @@ void register_inject(graph::Registry& registry) {
        "the light for normal-less voxels), in voxels; at least two shadow-map texels",
        true},
   };
+  graph::set_size_rule(info, "radiance", graph::same_layout_as("albedo"));
   info.may_skip = true;
   info.validate = [](graph::PassCheck& check) {
     contracts::check_clipmap_info_size(check);

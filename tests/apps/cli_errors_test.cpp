@@ -109,6 +109,28 @@ TEST_F(VoxgiCli, GraphCheckAcceptsTheDefaultGraph) {
   EXPECT_TRUE(stdout_has(r, {"default.json: ok"}));
 }
 
+// Every variant a shipped graph names compiles; one is chosen by --variant, and explain says
+// which variant and which pass sized the resources the graph leaves unsized.
+TEST_F(VoxgiCli, GraphCheckCompilesEveryVariantAndExplainNamesTheChosenOne) {
+  const ProcessResult check = voxgi({"graph", "check", "graphs/vct.json"});
+  EXPECT_TRUE(exited_with(check, 0));
+  EXPECT_TRUE(stdout_has(check, {"vct.json: ok", "variant 'dense': ok", "variant 'half': ok",
+                                 "variant 'cones16': ok"}));
+  const ProcessResult explain =
+      voxgi({"graph", "explain", "graphs/vct.json", "--variant", "dense"});
+  EXPECT_TRUE(exited_with(explain, 0));
+  EXPECT_TRUE(stdout_has(explain, {"variant: dense", "sized by pass 'voxelize'",
+                                   "sized by pass 'filter'", "sized by pass 'shadows'"}));
+}
+
+TEST_F(VoxgiCli, UnknownVariantListsTheGraphsVariants) {
+  const ProcessResult r = render({"--graph", "graphs/vct.json", "--variant", "hlaf"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(r, {"vct.json", "unknown variant 'hlaf'", "'dense', 'half', 'cones16'",
+                             "did you mean 'half'?"}));
+  EXPECT_TRUE(failed_before_rendering(r));
+}
+
 TEST_F(VoxgiCli, GraphCheckRejectsABrokenCopyNamingIt) {
   const std::string text = default_graph_text();
   write_text(dir_ / "broken.json", text.substr(0, text.size() / 2));

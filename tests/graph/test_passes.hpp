@@ -85,6 +85,53 @@ inline Registry make_registry() {
   add_type(r, "test.fill", {}, {slot("buf", kBuffer, Access::StorageWrite, kStageCompute)});
   add_type(r, "test.use_buffer", {slot("buf", kBuffer, Access::UniformRead, kStageCompute)},
            {slot("dst", kImages, Access::StorageWrite, kStageCompute)});
+  // Sizes its outputs from its parameters and the viewport (SlotSpec::size_rule): a clipmap of
+  // `levels` levels of `resolution`^3, a buffer of 16 bytes per voxel of a level, an image of
+  // the viewport in one of two formats.
+  {
+    PassTypeInfo info;
+    info.type = "test.sized";
+    info.doc = "test pass";
+    info.outputs = {slot("volume", kImages, Access::StorageWrite, kStageCompute, false,
+                         {VK_FORMAT_R16G16B16A16_SFLOAT}),
+                    slot("records", kBuffer, Access::StorageWrite, kStageCompute, true),
+                    slot("color", kImage2D, Access::StorageWrite, kStageCompute, true,
+                         {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R16G16B16A16_SFLOAT}),
+                    slot("unsizable", kImages, Access::StorageWrite, kStageCompute, true)};
+    ParamSpec resolution = param("resolution", ParamType::Int, 0, 0, 256);
+    resolution.sizes_outputs = true;
+    resolution.live = false;
+    ParamSpec levels = param("levels", ParamType::Int, 1, 0, 8);
+    levels.sizes_outputs = true;
+    levels.live = false;
+    info.params = {resolution, levels};
+    set_size_rule(info, "volume", [](const SizeQuery& q) {
+      DerivedSize size;
+      size.resolution = static_cast<uint32_t>(q.number("resolution"));
+      size.levels = static_cast<uint32_t>(q.number("levels"));
+      if (size.resolution == 0) size.unavailable = "parameter 'resolution' is 0";
+      return size;
+    });
+    set_size_rule(info, "records", [](const SizeQuery& q) {
+      DerivedSize size;
+      const auto edge = static_cast<VkDeviceSize>(q.number("resolution"));
+      size.bytes = edge * edge * edge * 16;
+      return size;
+    });
+    set_size_rule(info, "color", viewport_size(2));
+    r.add(std::move(info), [] { return std::make_unique<DeclarationOnlyPass>(); });
+  }
+  // Writes an image laid out as its input, with a full mip chain.
+  {
+    PassTypeInfo info;
+    info.type = "test.follow";
+    info.doc = "test pass";
+    info.inputs = {slot("src", kImages, Access::Sampled, kStageCompute)};
+    info.outputs = {slot("dst", kImages, Access::StorageWrite, kStageCompute, false,
+                         {VK_FORMAT_R16G16B16A16_SFLOAT})};
+    set_size_rule(info, "dst", same_layout_as("src", true));
+    r.add(std::move(info), [] { return std::make_unique<DeclarationOnlyPass>(); });
+  }
   // vkCmdDispatchIndirect with arguments another pass wrote.
   add_type(r, "test.indirect_dispatch",
            {slot("args", kBuffer, Access::IndirectRead, kStageCompute),

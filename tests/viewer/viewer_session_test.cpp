@@ -136,6 +136,46 @@ quit
   EXPECT_EQ(window.height, 500u);
 }
 
+// Variants of one file: a slot starts on one (FILE#VARIANT), V cycles them, the script picks
+// one; a parameter that sizes resources (the shadow maps' resolution) recompiles the graph.
+TEST_F(ViewerSessionTest, VariantsSwitchAndSizingParametersRecompile) {
+  write_file(dir_ / "graph.json", test_graph_text(0.05));
+  write_file(dir_ / "session.txt", R"(frames 2
+screenshot shots/bright
+key V
+frames 1
+screenshot shots/small_shadows
+key V
+frames 1
+screenshot shots/plain
+variant bright
+set shadows.resolution=128
+frames 2
+screenshot shots/bright_resized
+set shadows.resolution=256
+variant none
+frames 1
+screenshot shots/plain_again
+quit
+)");
+  const ProcessResult run = viewer({"--graph", "graph.json#bright", "--script", "session.txt"});
+  ASSERT_EQ(run.exit_code, 0) << run.describe();
+  EXPECT_EQ(run.err.find("vulkan validation"), std::string::npos) << run.err;
+  const fs::path shots = dir_ / "shots";
+  const image::ImageRGBA32F bright = png(shots / "bright.png");
+  const image::ImageRGBA32F plain = png(shots / "plain.png");
+  // The variant's ambient light (0.6) against the file's (0.05).
+  EXPECT_GT(mean_rgb(bright), mean_rgb(plain) + 0.05);
+  // 64-texel shadow maps change the shadows only: close to the plain frame, not identical.
+  const image::ImageRGBA32F small = png(shots / "small_shadows.png");
+  EXPECT_GT(compare_images(plain, small).max_abs, 0.0);
+  EXPECT_LT(compare_images(plain, small).mean_abs, 0.05);
+  // Resized shadow maps keep the variant; the file as written comes back exactly.
+  EXPECT_GT(mean_rgb(png(shots / "bright_resized.png")), mean_rgb(plain) + 0.05);
+  EXPECT_LT(compare_images(plain, png(shots / "plain_again.png")).max_abs, 1e-6);
+  EXPECT_NE(run.err.find("graph.json #small_shadows"), std::string::npos) << run.err;
+}
+
 TEST_F(ViewerSessionTest, ScreenshotMatchesVoxgiRenderOfTheSameFrame) {
   write_file(dir_ / "graph.json", test_graph_text(0.05));
   write_file(dir_ / "session.txt", "frames 3\nscreenshot viewer\nquit\n");

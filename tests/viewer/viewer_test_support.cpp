@@ -14,16 +14,18 @@ namespace voxgi::test {
 std::string test_graph_text(double ambient) {
   return R"json({
   "name": "viewer-test",
+  "variants": {
+    "bright": { "doc": "more ambient light", "set": { "ambient.radiance": 0.6 } },
+    "small_shadows": { "doc": "smaller shadow maps", "set": { "shadows.resolution": 64 } }
+  },
   "resources": {
     "gbuffer.base_color": { "type": "image2d", "format": "rgba8_srgb", "size": "viewport" },
     "gbuffer.normal":     { "type": "image2d", "format": "rgba16f",    "size": "viewport" },
     "gbuffer.material":   { "type": "image2d", "format": "rgba8",      "size": "viewport" },
     "gbuffer.emission":   { "type": "image2d", "format": "rgba16f",    "size": "viewport" },
     "gbuffer.depth":      { "type": "image2d", "format": "d32f",       "size": "viewport" },
-    "shadow.maps":        { "type": "image2d", "format": "d32f", "size": 256,
-                            "layers": "6 * max(1, min(scene.light_count, 4))", "persistent": true },
-    "shadow.matrices":    { "type": "buffer", "persistent": true,
-                            "size": "(6 * 64 + 32) * max(1, min(scene.light_count, 4))" },
+    "shadow.maps":        { "type": "image2d", "persistent": true },
+    "shadow.matrices":    { "type": "buffer", "persistent": true },
     "light.direct":       { "type": "image2d", "format": "rgba16f", "size": "viewport" },
     "gi.diffuse":         { "type": "image2d", "format": "rgba16f", "size": "viewport" },
     "hdr":                { "type": "image2d", "format": "rgba16f", "size": "viewport" },
@@ -35,6 +37,7 @@ std::string test_graph_text(double ambient) {
                "material": "gbuffer.material", "emission": "gbuffer.emission",
                "depth": "gbuffer.depth" } },
     { "name": "shadows", "type": "common.shadow_maps", "when": "scene.has_lights",
+      "params": { "resolution": 256, "max_lights": 4 },
       "out": { "maps": "shadow.maps", "matrices": "shadow.matrices" } },
     { "name": "lighting", "type": "common.deferred_lighting",
       "in": { "base_color": "gbuffer.base_color", "normal": "gbuffer.normal",

@@ -1,5 +1,6 @@
 #include "apps/voxgi/bench_runner.hpp"
 
+#include "engine/runtime/frame_driver.hpp"
 #include "engine/runtime/scene_source.hpp"
 
 namespace voxgi::cli {
@@ -64,18 +65,10 @@ RenderRun BenchRenderer::render(const graph::CompiledGraph& compiled,
   RenderRun run;
   const float aspect =
       static_cast<float>(compiled.viewport_width) / static_cast<float>(compiled.viewport_height);
+  runtime::FrameDriver driver(executor);
+  const runtime::FrameView view = runtime::frame_view(camera, aspect);
   for (uint32_t frame = 0; frame < warmup + frames; ++frame) {
-    graph::Executor::FrameInput input;
-    input.view = scene::view_matrix(camera);
-    input.proj = scene::projection_matrix(camera, aspect);
-    input.camera_position = glm::vec3(camera.world[3]);
-    input.znear = camera.znear;
-    input.zfar = camera.zfar;
-    input.time = 0.0;
-    input.camera_changed = frame == 0;
-    input.lights_changed = frame == 0;
-    input.geometry_changed = frame == 0;
-    executor.render(input);
+    driver.render(view, 0.0, runtime::FrameChanges{false, false, false});
     if (frame >= warmup) run.measured.push_back(executor.timings());
     if (on_frame) on_frame(frame + 1);
   }

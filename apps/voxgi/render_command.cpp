@@ -12,12 +12,12 @@
 #include "apps/voxgi/commands.hpp"
 #include "apps/voxgi/timings_report.hpp"
 #include "engine/gpu/context.hpp"
-#include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/dump.hpp"
 #include "engine/graph/executor.hpp"
 #include "engine/image/image.hpp"
+#include "engine/runtime/graph_instance.hpp"
+#include "engine/runtime/runtime.hpp"
 #include "engine/runtime/scene_source.hpp"
-#include "engine/scene/gpu_scene.hpp"
 
 namespace voxgi::cli {
 namespace {
@@ -106,56 +106,45 @@ int render_command(const std::vector<std::string>& argv) {
     std::cerr << "voxgi: warning: " << scene.source << ": " << warning << "\n";
   const scene::Camera camera = choose_camera(scene, args.value_or("camera", ""));
 
-  graph::Registry registry;
-  load_plugins_for(desc, registry);
   // The device before compiling: `when` conditions may read its features. It is announced once
   // the graph compiled, when rendering starts.
-  gpu::ContextOptions context_options;
-  context_options.device = args.value_or("device", "");
-  const char* env_validation = std::getenv("VOXGI_VALIDATION");
-  context_options.validation =
-      args.flag("validation") || (env_validation && std::string(env_validation) == "1");
-  gpu::Context context(context_options);
-  const graph::CompiledGraph compiled =
-      graph::compile(desc, registry, compile_options(args, scene, width, height, &context));
+  runtime::RuntimeOptions runtime_options;
+  runtime_options.device = args.value_or("device", "");
+  runtime_options.validation = args.flag("validation") || runtime::validation_from_environment();
+  runtime::Runtime runtime(runtime_options, std::move(scene));
+  const graph::CompileOptions options =
+      compile_options(args, runtime.scene(), width, height, &runtime.context());
+  runtime::GraphSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.overrides = options.overrides;
+  settings.full_barriers = options.full_barriers;
+  settings.alias_transients = options.alias_transients;
+  runtime::GraphInstance instance(runtime, desc, settings);
+  const graph::CompiledGraph& compiled = instance.compiled();
+  gpu::Context& context = runtime.context();
   std::cerr << "voxgi: device: " << context.device_summary() << "\n";
   if (const std::optional<std::string> dump_dir = args.value("dump-dir")) {
     graph::dump_phases(desc, compiled, *dump_dir);
   }
 
-  gpu::ShaderCompiler shaders({gpu::ShaderCompiler::default_shader_root()},
-                              gpu::ShaderCompiler::default_cache_dir());
-  scene::GpuScene gpu_scene(context, scene);
-  graph::Executor executor(context, shaders, registry);
-  executor.build(compiled, scene, gpu_scene);
-
   // The first frames compile pipelines and warm caches: they are not measured.
   const uint32_t warmup = frames > 1 ? std::min(2, frames - 1) : 0;
   TimingsReport report(warmup);
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const runtime::FrameView view = runtime::frame_view(camera, aspect);
   for (int frame = 0; frame < frames; ++frame) {
     const double time = static_cast<double>(frame) / fps;
-    const bool moved = frame > 0 && scene.animate(time);
-    if (moved) gpu_scene.update(scene);
-    graph::Executor::FrameInput input;
-    input.view = scene::view_matrix(camera);
-    input.proj = scene::projection_matrix(camera, aspect);
-    input.camera_position = glm::vec3(camera.world[3]);
-    input.znear = camera.znear;
-    input.zfar = camera.zfar;
-    input.time = time;
-    input.camera_changed = frame == 0;
-    input.lights_changed = frame == 0 || moved;
-    input.geometry_changed = frame == 0 || moved;
-    executor.render(input);
+    const bool moved = frame > 0 && runtime.animate(time);
+    instance.render(view, time, runtime::FrameChanges{false, moved, moved});
+    const graph::Executor& executor = instance.executor();
     report.add_frame(executor.timings(), graph::barrier_count(executor.frame_barriers()),
                      executor.frame_gpu_ms());
   }
 
   for (const auto& [name, resource] : compiled.outputs) {
     (void)resource;
-    image::ImageRGBA32F picture;
-    picture.pixels = executor.read_output(name, picture.width, picture.height);
+    const image::ImageRGBA32F picture = instance.read(name);
     if (name == "display") {
       image::write_png(fs::path(stem.string() + ".png"), picture);
       std::cerr << "voxgi: wrote " << stem.string() << ".png\n";
@@ -168,11 +157,11 @@ int render_command(const std::vector<std::string>& argv) {
   }
   std::cerr << report.table();
   if (timings_path) {
-    report.write_json(*timings_path, context.device_summary(), scene.source, desc.file, width,
-                      height);
+    report.write_json(*timings_path, context.device_summary(), runtime.scene().source, desc.file,
+                      width, height);
     std::cerr << "voxgi: wrote " << *timings_path << "\n";
   }
-  if (context_options.validation && context.validation_message_count() > 0) {
+  if (runtime_options.validation && context.validation_message_count() > 0) {
     std::cerr << "voxgi: error: the validation layer reported "
               << context.validation_message_count() << " message(s)\n";
     return 1;

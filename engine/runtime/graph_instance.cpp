@@ -4,33 +4,17 @@
 
 namespace voxgi::runtime {
 
-FrameView frame_view(const scene::Camera& camera, float viewport_aspect) {
-  FrameView view;
-  view.view = scene::view_matrix(camera);
-  view.proj = scene::projection_matrix(camera, viewport_aspect);
-  view.position = glm::vec3(camera.world[3]);
-  view.znear = camera.znear;
-  view.zfar = camera.zfar;
-  return view;
-}
-
 GraphInstance::GraphInstance(Runtime& runtime, const std::filesystem::path& graph_file,
                              GraphSettings settings)
     : GraphInstance(runtime, graph::load_graph_file(graph_file), std::move(settings)) {}
 
 GraphInstance::GraphInstance(Runtime& runtime, graph::GraphDesc desc, GraphSettings settings)
     : runtime_(runtime), desc_(std::move(desc)), settings_(std::move(settings)) {
-  graph::GraphDesc compiled_desc = desc_;
-  for (const auto& [name, resource] : settings_.extra_outputs) {
-    graph::OutputDesc output;
-    output.name = name;
-    output.resource = resource;
-    compiled_desc.outputs.push_back(output);
-  }
-  runtime_.load_plugins_for(compiled_desc);
+  runtime_.load_plugins_for(desc_);  // extra outputs name resources, never other families
   executor_ = std::make_unique<graph::Executor>(runtime_.context(), runtime_.shaders(),
                                                 runtime_.registry());
   executor_->build(compile(settings_), runtime_.scene(), runtime_.gpu_scene());
+  frames_ = std::make_unique<FrameDriver>(*executor_);
 }
 
 graph::CompiledGraph GraphInstance::compile(const GraphSettings& settings) const {
@@ -55,19 +39,7 @@ graph::CompiledGraph GraphInstance::compile(const GraphSettings& settings) const
 GraphInstance::~GraphInstance() = default;
 
 void GraphInstance::render(const FrameView& view, double time, const FrameChanges& changes) {
-  graph::Executor::FrameInput input;
-  input.view = view.view;
-  input.proj = view.proj;
-  input.camera_position = view.position;
-  input.znear = view.znear;
-  input.zfar = view.zfar;
-  input.time = time;
-  // The first frame of an executor has nothing to reuse.
-  input.camera_changed = changes.camera || frames_ == 0;
-  input.lights_changed = changes.lights || frames_ == 0;
-  input.geometry_changed = changes.geometry || frames_ == 0;
-  executor_->render(input);
-  ++frames_;
+  frames_->render(view, time, changes);
 }
 
 image::ImageRGBA32F GraphInstance::read(const std::string& output) {
@@ -98,7 +70,7 @@ bool GraphInstance::set_param(const std::string& key, const std::string& value) 
     graph::CompiledGraph compiled = compile(changed);
     executor_->build(compiled, runtime_.scene(), runtime_.gpu_scene());
     settings_ = std::move(changed);
-    frames_ = 0;  // the next frame recomputes what the new sizes invalidated
+    frames_->restart();  // the next frame recomputes what the new sizes invalidated
     return false;
   }
 }

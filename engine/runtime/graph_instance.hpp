@@ -16,6 +16,7 @@
 #include "engine/graph/executor.hpp"
 #include "engine/graph/graph_desc.hpp"
 #include "engine/image/image.hpp"
+#include "engine/runtime/frame_driver.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace voxgi::runtime {
@@ -31,23 +32,6 @@ struct GraphSettings {
   std::map<std::string, std::string> extra_outputs;
   bool full_barriers = false;
   bool alias_transients = true;
-};
-
-// Where the frame is seen from.
-struct FrameView {
-  glm::mat4 view{1.0f};
-  glm::mat4 proj{1.0f};
-  glm::vec3 position{0.0f};
-  float znear = 0.1f;
-  float zfar = 100.0f;
-};
-FrameView frame_view(const scene::Camera& camera, float viewport_aspect);
-
-// What changed since the previous frame (drives the passes' skip decisions).
-struct FrameChanges {
-  bool camera = true;
-  bool lights = true;
-  bool geometry = true;
 };
 
 class GraphInstance {
@@ -82,7 +66,7 @@ class GraphInstance {
   const GraphSettings& settings() const { return settings_; }
   const graph::CompiledGraph& compiled() const;
   graph::Executor& executor() { return *executor_; }
-  uint64_t frames_rendered() const { return frames_; }
+  uint64_t frames_rendered() const { return frames_->frames(); }
 
  private:
   graph::CompiledGraph compile(const GraphSettings& settings) const;
@@ -91,7 +75,7 @@ class GraphInstance {
   graph::GraphDesc desc_;
   GraphSettings settings_;
   std::unique_ptr<graph::Executor> executor_;
-  uint64_t frames_ = 0;
+  std::unique_ptr<FrameDriver> frames_;
 };
 
 }  // namespace voxgi::runtime

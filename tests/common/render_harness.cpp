@@ -61,6 +61,7 @@ RenderHarness::RenderHarness(const RenderSetup& setup) : setup_(setup) {
   gpu_scene_ = std::make_unique<scene::GpuScene>(context, scene_);
   executor_ = std::make_unique<graph::Executor>(context, *shaders_, registry_);
   executor_->build(compiled_, scene_, *gpu_scene_);
+  frames_ = std::make_unique<runtime::FrameDriver>(*executor_);
 }
 
 RenderHarness::~RenderHarness() = default;
@@ -83,22 +84,10 @@ glm::mat4 RenderHarness::view_proj() const {
   return scene::projection_matrix(camera_, aspect) * scene::view_matrix(camera_);
 }
 
-void RenderHarness::render(int frames) {
+void RenderHarness::render(int frames, const runtime::FrameChanges& changes) {
   const float aspect = static_cast<float>(setup_.width) / static_cast<float>(setup_.height);
   for (int i = 0; i < frames; ++i) {
-    graph::Executor::FrameInput input;
-    input.view = scene::view_matrix(camera_);
-    input.proj = scene::projection_matrix(camera_, aspect);
-    input.camera_position = glm::vec3(camera_.world[3]);
-    input.znear = camera_.znear;
-    input.zfar = camera_.zfar;
-    input.time = 0.0;
-    const bool first = frames_rendered_ == 0;
-    input.camera_changed = first;
-    input.lights_changed = first;
-    input.geometry_changed = first;
-    executor_->render(input);
-    ++frames_rendered_;
+    frames_->render(runtime::frame_view(camera_, aspect), 0.0, changes);
   }
 }
 

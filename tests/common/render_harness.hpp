@@ -14,6 +14,7 @@
 #include "engine/graph/compiler.hpp"
 #include "engine/graph/executor.hpp"
 #include "engine/graph/pass.hpp"
+#include "engine/runtime/frame_driver.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene.hpp"
 
@@ -47,7 +48,8 @@ class RenderHarness {
   explicit RenderHarness(const RenderSetup& setup);
   ~RenderHarness();
 
-  void render(int frames = 1);
+  // After the first frame, `changes` says what changed (nothing by default).
+  void render(int frames = 1, const runtime::FrameChanges& changes = {false, false, false});
   RenderedImage output(const std::string& name);
 
   scene::Scene& scene() { return scene_; }
@@ -65,7 +67,7 @@ class RenderHarness {
   std::unique_ptr<gpu::ShaderCompiler> shaders_;
   std::unique_ptr<scene::GpuScene> gpu_scene_;
   std::unique_ptr<graph::Executor> executor_;
-  int frames_rendered_ = 0;
+  std::unique_ptr<runtime::FrameDriver> frames_;
 };
 
 }  // namespace voxgi::test

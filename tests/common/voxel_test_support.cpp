@@ -45,21 +45,17 @@ VoxelRun::VoxelRun(const scene::Scene& scene, std::map<std::string, std::string>
   compiled_ =
       graph::compile(desc, registry_, test_compile_options(scene_, 16, 16, std::move(overrides)));
   gpu_ = std::make_unique<TestGraphGpu>(registry_, compiled_, scene_);
+  frames_ = std::make_unique<runtime::FrameDriver>(*gpu_->executor);
 }
 
 VoxelRun::~VoxelRun() = default;
 
 void VoxelRun::render(const glm::vec3& camera, bool geometry_changed) {
-  graph::Executor::FrameInput input;
-  input.view = glm::lookAt(camera, camera + glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(0, 1, 0));
-  input.proj = glm::perspective(1.0f, 1.0f, 0.01f, 100.0f);
-  input.camera_position = camera;
-  const bool first = frames_ == 0;
-  input.camera_changed = true;
-  input.lights_changed = first;
-  input.geometry_changed = first || geometry_changed;
-  gpu_->executor->render(input);
-  ++frames_;
+  runtime::FrameView view;
+  view.view = glm::lookAt(camera, camera + glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(0, 1, 0));
+  view.proj = glm::perspective(1.0f, 1.0f, 0.01f, 100.0f);
+  view.position = camera;
+  frames_->render(view, 0.0, runtime::FrameChanges{true, false, geometry_changed});
 }
 
 void VoxelRun::animate(double time) {

@@ -12,6 +12,7 @@
 #include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/compiler.hpp"
 #include "engine/graph/executor.hpp"
+#include "engine/runtime/frame_driver.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene.hpp"
 #include "passes/common/voxel_clipmap_window.hpp"
@@ -57,7 +58,7 @@ class VoxelRun {
   graph::Registry registry_;
   graph::CompiledGraph compiled_;
   std::unique_ptr<TestGraphGpu> gpu_;
-  int frames_ = 0;
+  std::unique_ptr<runtime::FrameDriver> frames_;
 };
 
 // Whether the triangle overlaps the voxel [v, v + 1]^3 grown by `grow` on each side (negative

@@ -121,24 +121,15 @@ DvsRunner::DvsRunner(Setup setup) : setup_(std::move(setup)) {
   compiled_ = graph::compile(
       desc, registry_, test_compile_options(scene_, setup_.width, setup_.height, setup_.overrides));
   gpu_ = std::make_unique<TestGraphGpu>(registry_, compiled_, scene_);
+  frames_ = std::make_unique<runtime::FrameDriver>(*gpu_->executor);
 }
 
 DvsRunner::~DvsRunner() = default;
 
 void DvsRunner::render(bool lights_changed, bool geometry_changed) {
   const float aspect = static_cast<float>(setup_.width) / static_cast<float>(setup_.height);
-  graph::Executor::FrameInput input;
-  input.view = scene::view_matrix(camera_);
-  input.proj = scene::projection_matrix(camera_, aspect);
-  input.camera_position = glm::vec3(camera_.world[3]);
-  input.znear = camera_.znear;
-  input.zfar = camera_.zfar;
-  const bool first = frames_ == 0;
-  input.camera_changed = first;
-  input.lights_changed = first || lights_changed;
-  input.geometry_changed = first || geometry_changed;
-  gpu_->executor->render(input);
-  ++frames_;
+  frames_->render(runtime::frame_view(camera_, aspect), 0.0,
+                  runtime::FrameChanges{false, lights_changed, geometry_changed});
 }
 
 void DvsRunner::move_light(size_t index, glm::vec3 position) {

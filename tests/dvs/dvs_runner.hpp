@@ -13,6 +13,7 @@
 #include "engine/graph/compiler.hpp"
 #include "engine/graph/executor.hpp"
 #include "engine/graph/pass.hpp"
+#include "engine/runtime/frame_driver.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene.hpp"
 #include "tests/common/test_graph_gpu.hpp"
@@ -63,7 +64,7 @@ class DvsRunner {
   graph::Registry registry_;
   graph::CompiledGraph compiled_;
   std::unique_ptr<TestGraphGpu> gpu_;
-  int frames_ = 0;
+  std::unique_ptr<runtime::FrameDriver> frames_;
 };
 
 // Registers dvs_test.voxel_source reading from `data`.

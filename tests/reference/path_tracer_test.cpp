@@ -229,16 +229,7 @@ TEST_F(PathTracerTest, RefitAfterAnInstanceMovedMatchesARebuild) {
   ASSERT_GE(block, 0);
   scene.nodes[size_t(block)].translation += glm::vec3(-0.12f, 0.0f, -0.1f);
   scene.update_transforms();
-  graph::Executor::FrameInput input;
-  input.view = scene::view_matrix(moving.camera());
-  input.proj = scene::projection_matrix(moving.camera(), 1.0f);
-  input.camera_position = glm::vec3(moving.camera().world[3]);
-  input.znear = moving.camera().znear;
-  input.zfar = moving.camera().zfar;
-  input.camera_changed = false;
-  input.lights_changed = false;
-  input.geometry_changed = true;
-  moving.executor().render(input);
+  moving.render(1, runtime::FrameChanges{false, false, true});
   const RenderedImage refitted = moving.output("linear");
   ASSERT_EQ(moving.output("variance").at(0, 0).w, 4.0f) << "the sums restarted";
 

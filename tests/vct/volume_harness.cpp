@@ -154,6 +154,7 @@ VolumeGraph::VolumeGraph(const std::string& graph_json, const VolumeData* data, 
   gpu_scene_ = std::make_unique<scene::GpuScene>(context, scene_);
   executor_ = std::make_unique<graph::Executor>(context, *shaders_, registry_);
   executor_->build(compiled_, scene_, *gpu_scene_);
+  frames_ = std::make_unique<runtime::FrameDriver>(*executor_);
 }
 
 VolumeGraph::~VolumeGraph() = default;
@@ -170,20 +171,8 @@ void VolumeGraph::render(int frames, bool lights_changed) {
   camera.zfar = 500.0f;
   const float aspect = static_cast<float>(width_) / static_cast<float>(height_);
   for (int i = 0; i < frames; ++i) {
-    graph::Executor::FrameInput input;
-    input.view =
-        glm::lookAt(eye_, target_,
-                    std::abs(glm::normalize(target_ - eye_).y) > 0.99f ? glm::vec3(0, 0, 1)
-                                                                       : glm::vec3(0, 1, 0));
-    input.proj = scene::projection_matrix(camera, aspect);
-    input.camera_position = eye_;
-    input.znear = camera.znear;
-    input.zfar = camera.zfar;
-    input.camera_changed = first_;
-    input.lights_changed = first_ || lights_changed;
-    input.geometry_changed = first_;
-    executor_->render(input);
-    first_ = false;
+    frames_->render(runtime::look_at_view(eye_, target_, camera, aspect), 0.0,
+                    runtime::FrameChanges{false, lights_changed, false});
   }
 }
 

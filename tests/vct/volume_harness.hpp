@@ -18,6 +18,7 @@
 #include "engine/graph/compiler.hpp"
 #include "engine/graph/executor.hpp"
 #include "engine/graph/pass.hpp"
+#include "engine/runtime/frame_driver.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene.hpp"
 #include "passes/contracts/voxel_clipmap.hpp"
@@ -93,7 +94,7 @@ class VolumeGraph {
   glm::vec3 eye_{0.0f, 0.0f, 5.0f};
   glm::vec3 target_{0.0f};
   uint32_t width_, height_;
-  bool first_ = true;
+  std::unique_ptr<runtime::FrameDriver> frames_;
 };
 
 // One probe of the cone-trace library: a point and a normal (diffuse) or cone direction.

@@ -12,27 +12,52 @@ namespace voxgi::gpu {
 Buffer::Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
                std::string name)
     : context_(&context), size_(size), memory_(memory), name_(std::move(name)) {
-  if (size == 0) throw Error("buffer \"" + name_ + "\": size must be greater than 0");
-  if (memory == MemoryUsage::GpuOnly) {
-    usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
-  }
-  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-  info.size = size;
-  info.usage = usage;
-  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  check(vkCreateBuffer(context.device(), &info, nullptr, &buffer_),
-        ("vkCreateBuffer for \"" + name_ + "\"").c_str());
-  VkMemoryRequirements requirements;
-  vkGetBufferMemoryRequirements(context.device(), buffer_, &requirements);
+  create(usage);
   try {
-    allocation_ = context.allocator().allocate(requirements, memory);
+    allocation_ = context.allocator().allocate(memory_requirements(), memory);
     check(vkBindBufferMemory(context.device(), buffer_, allocation_.memory, allocation_.offset),
           "vkBindBufferMemory");
   } catch (const Error& error) {
     destroy();
     throw Error("buffer \"" + name_ + "\" (" + std::to_string(size) + " bytes): " + error.what());
   }
-  context.set_debug_name(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(buffer_), name_);
+}
+
+Buffer::Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, std::string name,
+               BindLater)
+    : context_(&context),
+      owns_memory_(false),
+      size_(size),
+      memory_(MemoryUsage::GpuOnly),
+      name_(std::move(name)) {
+  create(usage);
+}
+
+void Buffer::create(VkBufferUsageFlags usage) {
+  if (size_ == 0) throw Error("buffer \"" + name_ + "\": size must be greater than 0");
+  if (memory_ == MemoryUsage::GpuOnly) {
+    usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+  }
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size_;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  check(vkCreateBuffer(context_->device(), &info, nullptr, &buffer_),
+        ("vkCreateBuffer for \"" + name_ + "\"").c_str());
+  context_->set_debug_name(VK_OBJECT_TYPE_BUFFER, reinterpret_cast<uint64_t>(buffer_), name_);
+}
+
+VkMemoryRequirements Buffer::memory_requirements() const {
+  VkMemoryRequirements requirements{};
+  vkGetBufferMemoryRequirements(context_->device(), buffer_, &requirements);
+  return requirements;
+}
+
+void Buffer::bind_memory(const Allocation& memory) {
+  check(vkBindBufferMemory(context_->device(), buffer_, memory.memory, memory.offset),
+        ("vkBindBufferMemory for buffer \"" + name_ + "\"").c_str());
+  allocation_ = memory;
+  owns_memory_ = false;
 }
 
 Buffer::~Buffer() {
@@ -43,6 +68,7 @@ Buffer::Buffer(Buffer&& other) noexcept
     : context_(other.context_),
       buffer_(std::exchange(other.buffer_, VK_NULL_HANDLE)),
       allocation_(std::exchange(other.allocation_, Allocation{})),
+      owns_memory_(other.owns_memory_),
       size_(std::exchange(other.size_, 0)),
       memory_(other.memory_),
       name_(std::move(other.name_)) {}
@@ -53,6 +79,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
     context_ = other.context_;
     buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
     allocation_ = std::exchange(other.allocation_, Allocation{});
+    owns_memory_ = other.owns_memory_;
     size_ = std::exchange(other.size_, 0);
     memory_ = other.memory_;
     name_ = std::move(other.name_);
@@ -63,7 +90,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
 void Buffer::destroy() {
   if (!context_) return;
   if (buffer_) vkDestroyBuffer(context_->device(), buffer_, nullptr);
-  if (allocation_.memory) context_->allocator().free(allocation_);
+  if (allocation_.memory && owns_memory_) context_->allocator().free(allocation_);
   buffer_ = VK_NULL_HANDLE;
   allocation_ = Allocation{};
 }

@@ -19,6 +19,9 @@ class Buffer {
   // download() work. size must be > 0.
   Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
          std::string name);
+  // A GpuOnly buffer without memory: bind_memory() binds memory the caller owns (SharedMemory).
+  Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, std::string name,
+         BindLater);
   ~Buffer();
   Buffer(const Buffer&) = delete;
   Buffer& operator=(const Buffer&) = delete;
@@ -30,6 +33,9 @@ class Buffer {
   void* mapped() const { return allocation_.mapped; }  // null for GpuOnly
   MemoryUsage memory_usage() const { return memory_; }
   const std::string& name() const { return name_; }
+  VkMemoryRequirements memory_requirements() const;
+  // Once, for a buffer made with BindLater; the memory stays the caller's.
+  void bind_memory(const Allocation& memory);
 
   // memcpy when mapped, else a staging copy with immediate_submit (waits for the queue).
   // Throws Error when [offset, offset + size) is outside the buffer.
@@ -50,12 +56,14 @@ class Buffer {
   }
 
  private:
+  void create(VkBufferUsageFlags usage);
   void destroy();
   void check_range(VkDeviceSize size, VkDeviceSize offset, const char* what) const;
 
   Context* context_ = nullptr;
   VkBuffer buffer_ = VK_NULL_HANDLE;
   Allocation allocation_{};
+  bool owns_memory_ = true;
   VkDeviceSize size_ = 0;
   MemoryUsage memory_ = MemoryUsage::GpuOnly;
   std::string name_;

@@ -41,7 +41,20 @@ std::string extent_text(VkExtent3D e) {
 
 }  // namespace
 
-Image::Image(Context& context, const ImageDesc& desc) : context_(&context), desc_(desc) {
+Image::Image(Context& context, const ImageDesc& desc) : Image(context, desc, BindLater{}) {
+  owns_memory_ = true;
+  try {
+    allocation_ = context.allocator().allocate(memory_requirements(), MemoryUsage::GpuOnly);
+    check(vkBindImageMemory(context.device(), image_, allocation_.memory, allocation_.offset),
+          "vkBindImageMemory");
+  } catch (const Error& error) {
+    throw Error("image \"" + desc_.name + "\" (" + extent_text(desc_.extent) + ", " +
+                format_name(desc_.format) + "): " + error.what());
+  }
+}
+
+Image::Image(Context& context, const ImageDesc& desc, BindLater)
+    : context_(&context), desc_(desc), owns_memory_(false) {
   const std::string label = "image \"" + desc_.name + "\"";
   if (desc_.extent.width == 0 || desc_.extent.height == 0 || desc_.extent.depth == 0) {
     throw Error(label + ": extent " + extent_text(desc_.extent) +
@@ -95,18 +108,20 @@ Image::Image(Context& context, const ImageDesc& desc) : context_(&context), desc
   info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   check(vkCreateImage(context.device(), &info, nullptr, &image_),
         ("vkCreateImage for " + label).c_str());
-  VkMemoryRequirements requirements;
-  vkGetImageMemoryRequirements(context.device(), image_, &requirements);
-  try {
-    allocation_ = context.allocator().allocate(requirements, MemoryUsage::GpuOnly);
-    check(vkBindImageMemory(context.device(), image_, allocation_.memory, allocation_.offset),
-          "vkBindImageMemory");
-  } catch (const Error& error) {
-    destroy();
-    throw Error(label + " (" + extent_text(desc_.extent) + ", " + format_name(desc_.format) +
-                "): " + error.what());
-  }
   context.set_debug_name(VK_OBJECT_TYPE_IMAGE, reinterpret_cast<uint64_t>(image_), desc_.name);
+}
+
+VkMemoryRequirements Image::memory_requirements() const {
+  VkMemoryRequirements requirements{};
+  vkGetImageMemoryRequirements(context_->device(), image_, &requirements);
+  return requirements;
+}
+
+void Image::bind_memory(const Allocation& memory) {
+  check(vkBindImageMemory(context_->device(), image_, memory.memory, memory.offset),
+        ("vkBindImageMemory for image \"" + desc_.name + "\"").c_str());
+  allocation_ = memory;
+  owns_memory_ = false;
 }
 
 Image::~Image() {
@@ -118,6 +133,7 @@ Image::Image(Image&& other) noexcept
       desc_(std::move(other.desc_)),
       image_(std::exchange(other.image_, VK_NULL_HANDLE)),
       allocation_(std::exchange(other.allocation_, Allocation{})),
+      owns_memory_(other.owns_memory_),
       aspect_(other.aspect_),
       whole_view_(std::exchange(other.whole_view_, VK_NULL_HANDLE)),
       mip_views_(std::move(other.mip_views_)),
@@ -133,6 +149,7 @@ Image& Image::operator=(Image&& other) noexcept {
     desc_ = std::move(other.desc_);
     image_ = std::exchange(other.image_, VK_NULL_HANDLE);
     allocation_ = std::exchange(other.allocation_, Allocation{});
+    owns_memory_ = other.owns_memory_;
     aspect_ = other.aspect_;
     whole_view_ = std::exchange(other.whole_view_, VK_NULL_HANDLE);
     mip_views_ = std::move(other.mip_views_);
@@ -153,7 +170,7 @@ void Image::destroy() {
   mip_views_.clear();
   layer_views_.clear();
   if (image_) vkDestroyImage(device, image_, nullptr);
-  if (allocation_.memory) context_->allocator().free(allocation_);
+  if (allocation_.memory && owns_memory_) context_->allocator().free(allocation_);
   image_ = VK_NULL_HANDLE;
   allocation_ = Allocation{};
 }

@@ -45,6 +45,8 @@ class Image {
   // format, usage and image name) or out-of-memory. TRANSFER_SRC and TRANSFER_DST are
   // always added to usage so upload(), download() and mip generation work.
   Image(Context& context, const ImageDesc& desc);
+  // The same without memory: bind_memory() binds memory the caller owns (SharedMemory).
+  Image(Context& context, const ImageDesc& desc, BindLater);
   ~Image();
   Image(const Image&) = delete;
   Image& operator=(const Image&) = delete;
@@ -67,6 +69,9 @@ class Image {
 
   VkImageSubresourceRange range() const;
   VkDeviceSize memory_size() const { return allocation_.size; }
+  VkMemoryRequirements memory_requirements() const;
+  // Once, for an image made with BindLater; the memory stays the caller's.
+  void bind_memory(const Allocation& memory);
 
   // Replaces mip 0 of every layer (contents before are discarded, so the image may be in
   // any layout) with `pixels`: layers one after the other, each tightly packed (for a 3D
@@ -105,6 +110,7 @@ class Image {
   ImageDesc desc_;
   VkImage image_ = VK_NULL_HANDLE;
   Allocation allocation_{};
+  bool owns_memory_ = true;
   VkImageAspectFlags aspect_ = VK_IMAGE_ASPECT_COLOR_BIT;
   VkImageView whole_view_ = VK_NULL_HANDLE;
   std::map<uint32_t, VkImageView> mip_views_;

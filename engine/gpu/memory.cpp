@@ -84,4 +84,11 @@ void DedicatedAllocator::free(const Allocation& allocation) {
   bytes_in_use_ -= allocation.size;
 }
 
+SharedMemory::SharedMemory(Allocator& allocator, const VkMemoryRequirements& requirements)
+    : allocator_(allocator), allocation_(allocator.allocate(requirements, MemoryUsage::GpuOnly)) {}
+
+SharedMemory::~SharedMemory() {
+  allocator_.free(allocation_);
+}
+
 }  // namespace voxgi::gpu

@@ -50,4 +50,26 @@ class DedicatedAllocator final : public Allocator {
   std::atomic<VkDeviceSize> bytes_in_use_{0};
 };
 
+// Device memory that several resources bind to one after another (their lifetimes within a
+// frame do not overlap: the frame graph's aliasing of transients). It must outlive every
+// resource bound to it; those do not free it.
+class SharedMemory {
+ public:
+  // `requirements`: the largest size and alignment of the resources, the memory types all of
+  // them accept. Throws Error like Allocator::allocate.
+  SharedMemory(Allocator& allocator, const VkMemoryRequirements& requirements);
+  ~SharedMemory();
+  SharedMemory(const SharedMemory&) = delete;
+  SharedMemory& operator=(const SharedMemory&) = delete;
+
+  const Allocation& allocation() const { return allocation_; }
+
+ private:
+  Allocator& allocator_;
+  Allocation allocation_;
+};
+
+// Tag for constructors that create a resource without memory: bind_memory() binds it later.
+struct BindLater {};
+
 }  // namespace voxgi::gpu

@@ -853,7 +853,7 @@ class Compiler {
           }
           continue;
         }
-        const int index = resource_index(b.resource);
+        int index = resource_index(b.resource);
         if (index < 0) {
           diags_.error(b.loc, pd.name, field, "unknown resource '" + b.resource + "'",
                        did_you_mean(b.resource, resource_names()));
@@ -862,6 +862,16 @@ class Compiler {
         if (!resource_ok_[static_cast<size_t>(index)]) {
           report_unsized(static_cast<size_t>(index), pd.name, b.loc, field);
           continue;  // otherwise already reported
+        }
+        if (b.previous) {
+          if (!is_input) {
+            diags_.error(b.loc, pd.name, field,
+                         "'" + b.resource +
+                             "@previous' is the previous frame's version: a pass may read it, "
+                             "not write it");
+            continue;
+          }
+          index = history_twin(index);
         }
         const ResourceInfo& info = graph_.resources[static_cast<size_t>(index)].info;
         if (!(spec->kinds & static_cast<uint32_t>(info.kind))) {
@@ -914,6 +924,24 @@ class Compiler {
         }
       }
     }
+  }
+
+  // The resource "<name>@previous" that holds what `index` held at the end of the previous
+  // frame: persistent, laid out alike, written only by the executor's copy as a frame ends.
+  int history_twin(int index) {
+    CompiledResource& original = graph_.resources[static_cast<size_t>(index)];
+    if (original.history >= 0) return original.history;
+    CompiledResource twin = original;
+    twin.info.name += "@previous";
+    twin.info.persistent = true;
+    twin.derived_by.clear();
+    twin.history_of = index;
+    const int twin_index = static_cast<int>(graph_.resources.size());
+    original.history = twin_index;
+    graph_.resources.push_back(std::move(twin));
+    resource_ok_.push_back(true);
+    sizing_.push_back(Sizing::ByGraph);
+    return twin_index;
   }
 
   // One pass may bind a resource to several slots only where the layouts agree.
@@ -1312,6 +1340,15 @@ class Compiler {
       if (needed[i]) continue;
       needed[i] = true;
       for (size_t d : deps.data[i]) stack.push_back(d);
+      // A reader of the previous frame's version needs what writes the current one (without
+      // running after it: the copy happens as the frame ends).
+      for (const SlotBinding& b : work_[i].bindings) {
+        if (!b.is_input || b.resource < 0) continue;
+        const int original = graph_.resources[static_cast<size_t>(b.resource)].history_of;
+        if (original >= 0) {
+          for (size_t j : writers_of(original, &live)) stack.push_back(j);
+        }
+      }
     }
     for (size_t i = 0; i < work_.size(); ++i) {
       if (live[i] && !needed[i]) {

@@ -112,6 +112,10 @@ struct CompiledResource {
   uint64_t bytes = 0;  // estimated
   bool is_output = false;
   std::string derived_by;  // the pass whose slot derived the size, when the graph gave none
+  // Frame history ("name@previous"): the persistent copy of `history_of` as the previous frame
+  // left it, written by a copy at the end of every frame; `history` is the other direction.
+  int history_of = -1;
+  int history = -1;
   // Carried between frames: persistent. A transient's first use in a frame writes it.
   bool carries_contents = false;
   // State per mip (one entry for buffers) at the end of a frame, after output transitions.
@@ -126,6 +130,20 @@ struct PhysicalResource {
   std::vector<int> resources;  // the logical resources living in it, by first use
   uint64_t bytes = 0;
   bool carries_contents = false;
+  int memory_block = -1;  // index into CompiledGraph::memory_blocks; -1: memory of its own
+};
+
+// Memory that transient allocations with disjoint lives in a frame take in turn (aliasing),
+// whatever their descriptions; the executor sizes it from the device's requirements.
+struct MemoryBlock {
+  std::vector<int> physical;  // in order of first use in a frame
+  uint64_t bytes = 0;         // estimated: the largest member
+};
+
+// A frame-history copy at the end of every frame: resource `from` into its "@previous" twin.
+struct HistoryCopy {
+  int from = -1;
+  int to = -1;
 };
 
 struct CompiledGraph {
@@ -152,8 +170,11 @@ struct CompiledGraph {
   // Outputs to TRANSFER_SRC at the end of the frame so they can be read back.
   std::vector<Barrier> frame_end;
   std::map<std::string, int> outputs;  // output name → resource index
-  uint64_t total_bytes = 0;            // physical allocations
-  uint64_t total_bytes_unshared = 0;   // if nothing shared
+  std::vector<MemoryBlock> memory_blocks;
+  std::vector<HistoryCopy> history_copies;  // recorded after the last pass, in this order
+  std::vector<Barrier> history_barriers;    // before them, in a frame of all passes
+  uint64_t total_bytes = 0;           // physical allocations, aliased ones counted once per block
+  uint64_t total_bytes_unshared = 0;  // if nothing shared
 
   int find_resource(std::string_view name) const;
   const CompiledPass* find_pass(std::string_view name) const;

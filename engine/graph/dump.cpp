@@ -233,6 +233,15 @@ std::string explain(const CompiledGraph& g) {
     for (const auto& [name, value] : p.params)
       out << "      param " << name << " = " << value.text << "\n";
   }
+  if (!g.history_copies.empty()) {
+    out << "  previous-frame copies:\n";
+    for (const Barrier& b : g.history_barriers)
+      out << "      barrier " << barrier_text(g, b) << "\n";
+    for (const HistoryCopy& c : g.history_copies) {
+      out << "      copy " << g.resources[static_cast<size_t>(c.from)].info.name << " -> "
+          << g.resources[static_cast<size_t>(c.to)].info.name << "\n";
+    }
+  }
   if (!g.frame_end.empty()) {
     out << "  frame end:\n";
     for (const Barrier& b : g.frame_end) out << "      barrier " << barrier_text(g, b) << "\n";
@@ -252,6 +261,7 @@ std::string explain(const CompiledGraph& g) {
     list("frame start", skipping.barriers.frame_start);
     for (size_t s = 0; s < g.passes.size(); ++s)
       list(g.passes[s].name.c_str(), skipping.barriers.passes[s]);
+    list("previous-frame copies", skipping.barriers.history);
     list("frame end", skipping.barriers.frame_end);
   }
   out << "\nculled (" << g.culled.size() << "):\n";
@@ -272,6 +282,10 @@ std::string explain(const CompiledGraph& g) {
       out << ", mips " << i.mip_levels << ", layers " << i.array_layers;
     if (i.persistent) out << ", persistent";
     if (!r.derived_by.empty()) out << ", sized by pass '" << r.derived_by << "'";
+    if (r.history_of >= 0) {
+      out << ", the previous frame's '" << g.resources[static_cast<size_t>(r.history_of)].info.name
+          << "' (copied as each frame ends)";
+    }
     if (r.physical < 0) {
       out << ", unused\n";
       continue;
@@ -289,10 +303,24 @@ std::string explain(const CompiledGraph& g) {
       }
       out << ")";
     }
+    if (p.memory_block >= 0) out << ", memory block " << p.memory_block;
     out << ", " << mib(r.bytes) << "\n";
   }
-  out << "\nmemory: " << mib(g.total_bytes) << " in " << g.physical.size() << " allocations ("
+  uint64_t identical_only = 0;  // sharing only between identical descriptions
+  for (const PhysicalResource& p : g.physical) identical_only += p.bytes;
+  out << "\nmemory: " << mib(g.total_bytes) << " in " << g.physical.size() << " allocations, "
+      << g.memory_blocks.size() << " memory blocks taken in turn by transients ("
+      << mib(identical_only) << " sharing only identical transients, "
       << mib(g.total_bytes_unshared) << " without sharing)\n";
+  for (size_t b = 0; b < g.memory_blocks.size(); ++b) {
+    out << "  block " << b << ", " << mib(g.memory_blocks[b].bytes) << ":";
+    for (int p : g.memory_blocks[b].physical) {
+      out << " "
+          << g.resources[static_cast<size_t>(g.physical[static_cast<size_t>(p)].resources[0])]
+                 .info.name;
+    }
+    out << "\n";
+  }
   return out.str();
 }
 
@@ -421,6 +449,8 @@ Json barriers_to_json(const CompiledGraph& g) {
     for (const Barrier& b : p.barriers) list.push_back(barrier_json(g, b));
     j["passes"].push_back(Json{{"pass", p.name}, {"barriers", list}});
   }
+  j["history"] = Json::array();
+  for (const Barrier& b : g.history_barriers) j["history"].push_back(barrier_json(g, b));
   j["frame_end"] = Json::array();
   for (const Barrier& b : g.frame_end) j["frame_end"].push_back(barrier_json(g, b));
   const SkippingFrame skipping = skipping_frame(g);
@@ -461,9 +491,14 @@ Json resources_to_json(const CompiledGraph& g) {
   for (const PhysicalResource& p : g.physical) {
     Json names = Json::array();
     for (int r : p.resources) names.push_back(g.resources[static_cast<size_t>(r)].info.name);
-    j["physical"].push_back(Json{{"resources", names}, {"bytes", p.bytes}});
+    j["physical"].push_back(
+        Json{{"resources", names}, {"bytes", p.bytes}, {"memory_block", p.memory_block}});
   }
   j["total_bytes"] = g.total_bytes;
+  j["memory_blocks"] = Json::array();
+  for (const MemoryBlock& block : g.memory_blocks) {
+    j["memory_blocks"].push_back({{"physical", block.physical}, {"bytes", block.bytes}});
+  }
   j["total_bytes_unshared"] = g.total_bytes_unshared;
   return j;
 }

@@ -21,13 +21,6 @@ namespace {
 
 constexpr VkAccessFlags2 kAnyAccess = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
 
-bool same_description(const ResourceInfo& a, const ResourceInfo& b) {
-  return a.kind == b.kind && a.format == b.format && a.extent.width == b.extent.width &&
-         a.extent.height == b.extent.height && a.extent.depth == b.extent.depth &&
-         a.mip_levels == b.mip_levels && a.array_layers == b.array_layers &&
-         a.buffer_size == b.buffer_size;
-}
-
 // What a pass writes has a new version once it executed.
 void advance_versions(const CompiledPass& pass, std::vector<uint64_t>& versions) {
   for (const SlotBinding& b : pass.bindings) {
@@ -133,6 +126,45 @@ Executor::~Executor() {
 void Executor::release() {
   passes_.clear();  // passes may hold pipelines; they go before the resources they used
   physical_.clear();
+  shared_memory_.clear();
+}
+
+void Executor::bind_memory_blocks() {
+  for (const MemoryBlock& block : graph_.memory_blocks) {
+    // Members whose memory types intersect share one allocation; a member that fits none of
+    // the allocations made so far starts another (devices may keep some formats apart).
+    std::vector<VkMemoryRequirements> combined;
+    std::vector<std::vector<size_t>> members;
+    for (int p : block.physical) {
+      const Physical& phys = physical_[static_cast<size_t>(p)];
+      const VkMemoryRequirements need =
+          phys.image ? phys.image->memory_requirements() : phys.buffer->memory_requirements();
+      size_t g = 0;
+      while (g < combined.size() && (combined[g].memoryTypeBits & need.memoryTypeBits) == 0) ++g;
+      if (g == combined.size()) {
+        combined.push_back(need);
+        members.emplace_back();
+      } else {
+        combined[g].size = std::max(combined[g].size, need.size);
+        combined[g].alignment = std::max(combined[g].alignment, need.alignment);
+        combined[g].memoryTypeBits &= need.memoryTypeBits;
+      }
+      members[g].push_back(static_cast<size_t>(p));
+    }
+    for (size_t g = 0; g < combined.size(); ++g) {
+      shared_memory_.push_back(
+          std::make_unique<gpu::SharedMemory>(context_.allocator(), combined[g]));
+      for (size_t p : members[g]) {
+        Physical& phys = physical_[p];
+        const gpu::Allocation& memory = shared_memory_.back()->allocation();
+        if (phys.image) {
+          phys.image->bind_memory(memory);
+        } else {
+          phys.buffer->bind_memory(memory);
+        }
+      }
+    }
+  }
 }
 
 void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
@@ -172,6 +204,7 @@ void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
   }
   passes_.clear();
   physical_.clear();
+  shared_memory_.clear();
 
   graph_ = graph;
   sync_ = std::make_unique<FrameSync>(graph_);
@@ -203,9 +236,14 @@ void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
     for (size_t i = 1; i < desc.resources.size(); ++i) {
       name += "+" + graph_.resources[static_cast<size_t>(desc.resources[i])].info.name;
     }
+    const bool aliased = desc.memory_block >= 0;
     if (desc.info.kind == ResourceKind::Buffer) {
-      phys.buffer = std::make_unique<gpu::Buffer>(
-          context_, desc.info.buffer_size, desc.buffer_usage, gpu::MemoryUsage::GpuOnly, name);
+      phys.buffer =
+          aliased
+              ? std::make_unique<gpu::Buffer>(context_, desc.info.buffer_size, desc.buffer_usage,
+                                              name, gpu::BindLater{})
+              : std::make_unique<gpu::Buffer>(context_, desc.info.buffer_size, desc.buffer_usage,
+                                              gpu::MemoryUsage::GpuOnly, name);
     } else {
       gpu::ImageDesc image;
       image.type = desc.info.kind == ResourceKind::Image2D ? VK_IMAGE_TYPE_2D : VK_IMAGE_TYPE_3D;
@@ -215,10 +253,12 @@ void Executor::build(const CompiledGraph& graph, const scene::Scene& scene,
       image.array_layers = desc.info.array_layers;
       image.usage = desc.image_usage;
       image.name = name;
-      phys.image = std::make_unique<gpu::Image>(context_, image);
+      phys.image = aliased ? std::make_unique<gpu::Image>(context_, image, gpu::BindLater{})
+                           : std::make_unique<gpu::Image>(context_, image);
     }
     phys.fresh = true;
   }
+  bind_memory_blocks();
   kept.clear();  // persistent resources the new graph does not keep are freed here
 
   const uint32_t queries = static_cast<uint32_t>(2 * graph_.passes.size() + 2);
@@ -418,6 +458,36 @@ void Executor::record_initialisation(VkCommandBuffer cmd) {
   }
 }
 
+// Frame history: each "@previous" twin becomes a copy of the current version, whole.
+void Executor::record_history_copies(VkCommandBuffer cmd) {
+  for (const HistoryCopy& copy : graph_.history_copies) {
+    const CompiledResource& from = graph_.resources[static_cast<size_t>(copy.from)];
+    const CompiledResource& to = graph_.resources[static_cast<size_t>(copy.to)];
+    Physical& src = physical_[static_cast<size_t>(from.physical)];
+    Physical& dst = physical_[static_cast<size_t>(to.physical)];
+    if (src.buffer) {
+      const VkBufferCopy region{0, 0, from.info.buffer_size};
+      vkCmdCopyBuffer(cmd, src.buffer->handle(), dst.buffer->handle(), 1, &region);
+    } else {
+      std::vector<VkImageCopy> regions;
+      const VkExtent3D extent = src.image->extent();
+      for (uint32_t m = 0; m < from.info.mip_levels; ++m) {
+        VkImageCopy region{};
+        region.srcSubresource = {src.image->aspect(), m, 0, from.info.array_layers};
+        region.dstSubresource = region.srcSubresource;
+        region.extent = {std::max(1u, extent.width >> m), std::max(1u, extent.height >> m),
+                         std::max(1u, extent.depth >> m)};
+        regions.push_back(region);
+      }
+      vkCmdCopyImage(cmd, src.image->handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     dst.image->handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     static_cast<uint32_t>(regions.size()), regions.data());
+    }
+    resource_versions_[static_cast<size_t>(copy.to)] =
+        resource_versions_[static_cast<size_t>(copy.from)];
+  }
+}
+
 // Asked before anything is recorded, so that the frame's barriers can leave out what skipped
 // passes would have written. Each pass sees the versions the passes before it leave, counted
 // on a copy; execute() counts them for real.
@@ -510,6 +580,8 @@ void Executor::render(const FrameInput& input) {
       queries.emplace_back(begin_query, end_query);
       timings.push_back(std::move(timing));
     }
+    record_barriers(cmd_, barriers.history);
+    record_history_copies(cmd_);
     record_barriers(cmd_, barriers.frame_end);
     frame_end_query = timestamps_->write(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
   } catch (...) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/gpu/memory.hpp"
 #include "engine/graph/compiler.hpp"
 #include "engine/graph/frame.hpp"
 #include "engine/graph/pass.hpp"
@@ -92,7 +93,10 @@ class Executor {
   };
 
   void release();
+  // Memory for each of the graph's memory blocks, bound to the allocations taking turns in it.
+  void bind_memory_blocks();
   void record_initialisation(VkCommandBuffer cmd);
+  void record_history_copies(VkCommandBuffer cmd);
   void record_barriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers);
   void fill_frame(const FrameInput& input);
   void run_setup(LivePass& live);
@@ -105,6 +109,8 @@ class Executor {
   CompiledGraph graph_;
   const scene::Scene* scene_ = nullptr;
   scene::GpuScene* gpu_scene_ = nullptr;
+  // Before physical_: aliased images and buffers are destroyed before the memory they use.
+  std::vector<std::unique_ptr<gpu::SharedMemory>> shared_memory_;
   std::vector<Physical> physical_;
   std::vector<LivePass> passes_;
   // Write counts per graph resource (index as in graph_.resources); by name across rebuilds.

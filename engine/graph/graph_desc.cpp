@@ -277,14 +277,18 @@ class DescParser {
       const std::string& text = m.value.as_string();
       const size_t at = text.find('@');
       b.resource = text.substr(0, at);
-      if (at != std::string::npos) {
+      if (at != std::string::npos && text.substr(at + 1) == "previous") {
+        b.previous = true;
+      } else if (at != std::string::npos) {
         const std::string level = text.substr(at + 1);
         const bool digits =
             !level.empty() && level.size() < 3 &&
             std::all_of(level.begin(), level.end(), [](char c) { return c >= '0' && c <= '9'; });
         if (!digits) {
           diags_.error(b.loc, pass, field,
-                       "expected a mip level number after '@' (\"name@2\"), found '" + level + "'");
+                       "expected a mip level number (\"name@2\") or \"previous\" (the previous "
+                       "frame's version) after '@', found '" +
+                           level + "'");
           continue;
         }
         b.mip = std::stoi(level);

@@ -45,6 +45,9 @@ struct BindingDesc {
   SourceLoc slot_loc;
   std::string resource;
   int mip = -1;
+  // "name@previous": the resource as the previous frame left it (inputs only; docs/design.md,
+  // "Frame history").
+  bool previous = false;
   SourceLoc loc;  // of the value
 };
 

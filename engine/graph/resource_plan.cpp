@@ -117,13 +117,6 @@ std::optional<Barrier> transition(SyncTrack& t, const Need& need, bool discard, 
   return barrier;
 }
 
-bool same_description(const ResourceInfo& a, const ResourceInfo& b) {
-  return a.kind == b.kind && a.format == b.format && a.extent.width == b.extent.width &&
-         a.extent.height == b.extent.height && a.extent.depth == b.extent.depth &&
-         a.mip_levels == b.mip_levels && a.array_layers == b.array_layers &&
-         a.clipmap_levels == b.clipmap_levels && a.buffer_size == b.buffer_size;
-}
-
 bool mergeable(const Barrier& a, const Barrier& b) {
   return a.resource == b.resource && a.is_buffer == b.is_buffer && a.is_global == b.is_global &&
          a.base_mip + a.mip_count == b.base_mip && a.src_stages == b.src_stages &&
@@ -141,6 +134,7 @@ void append_merged(std::vector<Barrier>& list, const Barrier& b) {
 }
 
 void plan_lifetimes_and_usage(CompiledGraph& g) {
+  g.history_copies.clear();
   for (size_t s = 0; s < g.passes.size(); ++s) {
     for (const SlotBinding& b : g.passes[s].bindings) {
       if (b.resource < 0) continue;
@@ -170,6 +164,22 @@ void plan_lifetimes_and_usage(CompiledGraph& g) {
     }
     // Outputs are read back after the last pass.
     if (r.is_output) r.last_pass = static_cast<int>(g.passes.size());
+  }
+  // Frame history: a read previous version is copied from the current one as the frame ends,
+  // so both live to the end. Without a live reader, or without a live writer of the original
+  // (the copy then keeps its zeros), there is no copy.
+  for (CompiledResource& twin : g.resources) {
+    if (twin.history_of < 0 || twin.first_pass < 0) continue;
+    CompiledResource& original = g.resources[static_cast<size_t>(twin.history_of)];
+    if (original.first_pass < 0) continue;
+    const int end = static_cast<int>(g.passes.size());
+    original.last_pass = twin.last_pass = end;
+    if (original.info.kind == ResourceKind::Buffer) {
+      original.buffer_usage |= VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    } else {
+      original.image_usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    }
+    g.history_copies.push_back({twin.history_of, static_cast<int>(&twin - g.resources.data())});
   }
 }
 
@@ -219,9 +229,76 @@ void plan_physical(CompiledGraph& g, bool alias_transients) {
     r.image_usage = g.physical[static_cast<size_t>(r.physical)].image_usage;
     r.buffer_usage = g.physical[static_cast<size_t>(r.physical)].buffer_usage;
   }
+}
+
+// Transient allocations whose lives in a frame do not overlap take turns in one block of
+// memory, whatever their descriptions: each joins the free block it fits best (the least
+// growth, then the least waste). Buffers and images may alias too: at one offset and never
+// alive together, the buffer-image granularity does not apply, and the executor keeps apart
+// members whose memory types do not intersect on the device.
+void plan_memory_blocks(CompiledGraph& g, bool alias_transients) {
+  g.memory_blocks.clear();
+  struct Life {
+    int first = 0, last = -1;
+    bool aliasable = false;
+  };
+  std::vector<Life> lives(g.physical.size());
+  std::vector<size_t> order;
+  for (size_t p = 0; p < g.physical.size(); ++p) {
+    Life& life = lives[p];
+    life.aliasable = alias_transients && !g.physical[p].carries_contents;
+    life.first = INT32_MAX;
+    for (int r : g.physical[p].resources) {
+      const CompiledResource& res = g.resources[static_cast<size_t>(r)];
+      life.aliasable = life.aliasable && !res.is_output && !res.carries_contents;
+      life.first = std::min(life.first, res.first_pass);
+      life.last = std::max(life.last, res.last_pass);
+    }
+    if (life.aliasable) order.push_back(p);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return lives[a].first < lives[b].first; });
+  std::vector<MemoryBlock> blocks;
+  std::vector<int> busy_until;
+  for (size_t p : order) {
+    const PhysicalResource& phys = g.physical[p];
+    int best = -1;
+    uint64_t best_growth = 0, best_waste = 0;
+    for (size_t b = 0; b < blocks.size(); ++b) {
+      if (busy_until[b] >= lives[p].first) continue;
+      const uint64_t growth = phys.bytes > blocks[b].bytes ? phys.bytes - blocks[b].bytes : 0;
+      const uint64_t waste = blocks[b].bytes > phys.bytes ? blocks[b].bytes - phys.bytes : 0;
+      if (best < 0 || growth < best_growth || (growth == best_growth && waste < best_waste)) {
+        best = static_cast<int>(b);
+        best_growth = growth;
+        best_waste = waste;
+      }
+    }
+    if (best < 0) {
+      blocks.emplace_back();
+      busy_until.push_back(-1);
+      best = static_cast<int>(blocks.size() - 1);
+    }
+    MemoryBlock& block = blocks[static_cast<size_t>(best)];
+    block.physical.push_back(static_cast<int>(p));
+    block.bytes = std::max(block.bytes, phys.bytes);
+    busy_until[static_cast<size_t>(best)] = lives[p].last;
+  }
+  // A block of one is an allocation of its own.
+  for (PhysicalResource& phys : g.physical) phys.memory_block = -1;
+  for (MemoryBlock& block : blocks) {
+    if (block.physical.size() < 2) continue;
+    for (int p : block.physical) {
+      g.physical[static_cast<size_t>(p)].memory_block = static_cast<int>(g.memory_blocks.size());
+    }
+    g.memory_blocks.push_back(std::move(block));
+  }
   g.total_bytes = 0;
   g.total_bytes_unshared = 0;
-  for (const PhysicalResource& p : g.physical) g.total_bytes += p.bytes;
+  for (const PhysicalResource& phys : g.physical) {
+    if (phys.memory_block < 0) g.total_bytes += phys.bytes;
+  }
+  for (const MemoryBlock& block : g.memory_blocks) g.total_bytes += block.bytes;
   for (const CompiledResource& r : g.resources) {
     if (r.physical >= 0) g.total_bytes_unshared += r.bytes;
   }
@@ -250,8 +327,15 @@ void apply_full_barriers(std::vector<Barrier>& barriers) {
 
 }  // namespace
 
+bool same_description(const ResourceInfo& a, const ResourceInfo& b) {
+  return a.kind == b.kind && a.format == b.format && a.extent.width == b.extent.width &&
+         a.extent.height == b.extent.height && a.extent.depth == b.extent.depth &&
+         a.mip_levels == b.mip_levels && a.array_layers == b.array_layers &&
+         a.clipmap_levels == b.clipmap_levels && a.buffer_size == b.buffer_size;
+}
+
 size_t barrier_count(const FrameBarriers& frame) {
-  size_t count = frame.frame_start.size() + frame.frame_end.size();
+  size_t count = frame.frame_start.size() + frame.history.size() + frame.frame_end.size();
   for (const std::vector<Barrier>& pass : frame.passes) count += pass.size();
   return count;
 }
@@ -263,6 +347,8 @@ FrameSync::FrameSync(const CompiledGraph& graph) : graph_(&graph) {
     tracks_[p].resize(mip_count(graph.physical[p].info));
     last_use_[p].resize(tracks_[p].size());
   }
+  block_owner_.assign(graph.memory_blocks.size(), -1);
+  block_use_.assign(graph.memory_blocks.size(), SyncTrack{});
   // The first frame starts from nothing and finds where each resource ends a frame; the second
   // starts from there, as every frame after the first does.
   const std::vector<bool> none(graph.passes.size(), false);
@@ -289,8 +375,29 @@ FrameBarriers FrameSync::plan(const std::vector<bool>& skipped) {
     const CompiledResource& res = g.resources[static_cast<size_t>(r)];
     const size_t p = static_cast<size_t>(res.physical);
     last_use_[p][m] = need.state;
+    const int block = g.physical[p].memory_block;
+    if (block >= 0 && block_owner_[static_cast<size_t>(block)] != static_cast<int>(p)) {
+      // Moving into aliased memory: every first barrier of this allocation waits for what the
+      // previous one did there.
+      SyncTrack& before = block_use_[static_cast<size_t>(block)];
+      if (block_owner_[static_cast<size_t>(block)] >= 0) {
+        for (SyncTrack& t : tracks_[p]) {
+          t.write_stages |= before.write_stages;
+          t.write_access |= before.write_access;
+          t.read_stages |= before.read_stages;
+        }
+      }
+      block_owner_[static_cast<size_t>(block)] = static_cast<int>(p);
+      before = SyncTrack{};
+    }
     std::optional<Barrier> b =
         transition(tracks_[p][m], need, discard, res.info.kind == ResourceKind::Buffer);
+    if (block >= 0) {
+      SyncTrack& use = block_use_[static_cast<size_t>(block)];
+      use.write_stages |= tracks_[p][m].write_stages;
+      use.write_access |= tracks_[p][m].write_access;
+      use.read_stages |= tracks_[p][m].read_stages;
+    }
     if (b) {
       b->resource = r;
       b->base_mip = m;
@@ -328,6 +435,22 @@ FrameBarriers FrameSync::plan(const std::vector<bool>& skipped) {
     }
     if (g.full_barriers) apply_full_barriers(frame.passes[s]);
   }
+  // The previous-frame copies: the current version is read, its copy overwritten whole.
+  for (const HistoryCopy& copy : g.history_copies) {
+    const ResourceInfo& info = g.resources[static_cast<size_t>(copy.from)].info;
+    Need read;
+    read.state = state_for(Access::TransferRead, kStageTransfer, info.kind, info.format);
+    read.reads = true;
+    Need write;
+    write.state = state_for(Access::TransferWrite, kStageTransfer, info.kind, info.format);
+    write.writes = true;
+    for (uint32_t m = 0; m < mip_count(info); ++m) {
+      if (const std::optional<Barrier> b = move(copy.from, m, read, false))
+        append_merged(frame.history, *b);
+      if (const std::optional<Barrier> b = move(copy.to, m, write, true))
+        append_merged(frame.history, *b);
+    }
+  }
   for (const auto& [name, r] : g.outputs) {
     const CompiledResource& res = g.resources[static_cast<size_t>(r)];
     if (res.physical < 0) continue;
@@ -364,10 +487,12 @@ FrameBarriers FrameSync::plan(const std::vector<bool>& skipped) {
 void plan_resources(CompiledGraph& g, const CompileOptions& options) {
   plan_lifetimes_and_usage(g);
   plan_physical(g, options.alias_transients);
+  plan_memory_blocks(g, options.alias_transients);
   const FrameSync sync(g);
   const FrameBarriers& frame = sync.all_passes_frame();
   g.frame_start = frame.frame_start;
   g.frame_end = frame.frame_end;
+  g.history_barriers = frame.history;
   for (size_t s = 0; s < g.passes.size(); ++s) g.passes[s].barriers = frame.passes[s];
   for (CompiledResource& r : g.resources) {
     if (r.physical < 0) continue;

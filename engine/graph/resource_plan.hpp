@@ -23,8 +23,13 @@ VkBufferUsageFlags buffer_usage_for(Access access);
 struct FrameBarriers {
   std::vector<Barrier> frame_start;
   std::vector<std::vector<Barrier>> passes;  // recorded before each scheduled pass
+  std::vector<Barrier> history;              // before the previous-frame copies
   std::vector<Barrier> frame_end;
 };
+
+// Same kind, format, extent, mips, layers, clipmap levels and buffer size (names and
+// persistence aside): what can live in the same allocation.
+bool same_description(const ResourceInfo& a, const ResourceInfo& b);
 
 // Vulkan barriers (image, buffer and global memory barriers) in a frame.
 size_t barrier_count(const FrameBarriers& frame);
@@ -60,6 +65,10 @@ class FrameSync {
  private:
   const CompiledGraph* graph_;
   std::vector<std::vector<SyncTrack>> tracks_;  // per physical resource and mip
+  // Per memory block: the allocation using it now and what it has done there, which the next
+  // one to move in must wait for (its first barrier then carries those stages and writes).
+  std::vector<int> block_owner_;
+  std::vector<SyncTrack> block_use_;
   // Per physical resource and mip: the last use in a frame of all passes (the layout every
   // frame ends in), and in the frame just planned.
   std::vector<std::vector<ResourceState>> end_use_;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "engine/graph/dump.hpp"
 #include "tests/graph/test_passes.hpp"
 
 namespace voxgi::graph {
@@ -392,7 +393,9 @@ TEST(CompilerResources, DisjointTransientsShareOverlappingDoNot) {
   EXPECT_NE(physical("t1"), physical("t2"));  // [1,2] and [2,3] overlap
   EXPECT_NE(physical("t2"), physical("t3"));
   EXPECT_EQ(t1.bytes, 16u * 16u * 8u);
-  EXPECT_EQ(g.total_bytes_unshared - g.total_bytes, t1.bytes);
+  // t3 lives in t1's allocation; hdr (8^2 rgba16f, 512 bytes, passes 0..1) takes turns with t2
+  // in one block of memory.
+  EXPECT_EQ(g.total_bytes_unshared - g.total_bytes, t1.bytes + 8u * 8u * 8u);
   // The second sharer's first use waits for the first sharer's last read.
   const Barrier* b = find_barrier(g, g.find_pass("b3")->barriers, "t3");
   ASSERT_NE(b, nullptr);
@@ -404,6 +407,39 @@ TEST(CompilerResources, DisjointTransientsShareOverlappingDoNot) {
   const CompiledGraph separate = compile_graph(chain_resources(false), kClear + kChain, no_alias);
   EXPECT_EQ(separate.physical.size(), separate.resources.size());
   EXPECT_EQ(separate.total_bytes, separate.total_bytes_unshared);
+}
+
+// Different descriptions cannot share an allocation, but with disjoint lives they take turns in
+// blocks of memory: hdr (8^2 rgba16f, passes 0..1) then t2 (16^2 rgba16f, 2..3), and t1 (16^2
+// rgba16f, 1..2) then t3 (32^2 r8, 3..4), each joining the block it grows least. The newcomer's
+// first barrier waits for the last read of the one before.
+TEST(CompilerResources, DisjointTransientsOfOtherDescriptionsShareMemoryInTurn) {
+  const std::string resources = R"("t1": { "type": "image2d", "format": "rgba16f", "size": 16 },
+    "t2": { "type": "image2d", "format": "rgba16f", "size": 16 },
+    "t3": { "type": "image2d", "format": "r8", "size": 32 },)";
+  const CompiledGraph g = compile_graph(resources, kClear + kChain);
+  const auto physical = [&](const char* name) -> const PhysicalResource& {
+    return g.physical[static_cast<size_t>(
+        g.resources[static_cast<size_t>(g.find_resource(name))].physical)];
+  };
+  EXPECT_NE(&physical("t1"), &physical("t3"));
+  ASSERT_EQ(g.memory_blocks.size(), 2u) << explain(g);
+  EXPECT_EQ(physical("hdr").memory_block, physical("t2").memory_block);
+  EXPECT_EQ(physical("t1").memory_block, physical("t3").memory_block);
+  EXPECT_NE(physical("t1").memory_block, physical("t2").memory_block);
+  EXPECT_EQ(physical("ldr").memory_block, -1);  // an output
+  for (const MemoryBlock& block : g.memory_blocks) EXPECT_EQ(block.bytes, 16u * 16u * 8u);
+  EXPECT_EQ(g.total_bytes_unshared - g.total_bytes, 8u * 8u * 8u + 32u * 32u);
+  const Barrier* b = find_barrier(g, g.find_pass("b3")->barriers, "t3");
+  ASSERT_NE(b, nullptr);
+  EXPECT_EQ(b->old_layout, VK_IMAGE_LAYOUT_UNDEFINED);
+  // b2's read of t1 (and t3's own read by shade in the frame before).
+  EXPECT_TRUE(b->src_stages & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+  EXPECT_NE(explain(g).find("block 0, "), std::string::npos) << explain(g);
+
+  CompileOptions no_alias;
+  no_alias.alias_transients = false;
+  EXPECT_TRUE(compile_graph(resources, kClear + kChain, no_alias).memory_blocks.empty());
 }
 
 TEST(CompilerResources, PersistentResourcesNeverShare) {
@@ -464,6 +500,70 @@ TEST(CompilerResources, SizesMipsLayersAndClipmaps) {
   ASSERT_NE(depth, nullptr);
   EXPECT_EQ(depth->old_layout, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
   EXPECT_EQ(depth->new_layout, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+}
+
+// "x@previous": the previous frame's x, read without a dependency on x's writer (so a
+// temporal loop is no cycle), yet keeping that writer alive; both live to the frame's end,
+// where the copy is made after every pass.
+TEST(CompilerHistory, PreviousFrameReadsNeedNoOrderAndKeepTheWriter) {
+  const CompiledGraph g = compile_graph(
+      R"("x": { "type": "image2d", "format": "rgba16f", "size": 8 },
+         "y": { "type": "image2d", "format": "rgba16f", "size": 8 },)",
+      R"({ "name": "use", "type": "test.blur", "in": { "src": "x@previous" }, "out": { "dst": "y" } },
+         { "name": "make", "type": "test.blur", "in": { "src": "y" }, "out": { "dst": "x" } },
+         { "name": "shade", "type": "test.shade", "in": { "src": "y" }, "out": { "color": "ldr" } })");
+  EXPECT_EQ(schedule(g), (std::vector<std::string>{"use", "make", "shade"}));
+  EXPECT_TRUE(g.culled.empty()) << "make writes only what 'use' reads a frame later";
+  const int x = g.find_resource("x");
+  const int twin = g.find_resource("x@previous");
+  ASSERT_GE(twin, 0);
+  EXPECT_EQ(g.resources[static_cast<size_t>(twin)].history_of, x);
+  EXPECT_EQ(g.resources[static_cast<size_t>(x)].history, twin);
+  EXPECT_TRUE(g.resources[static_cast<size_t>(twin)].info.persistent);
+  EXPECT_EQ(g.find_pass("use")->binding("src")->resource, twin);
+  ASSERT_EQ(g.history_copies.size(), 1u);
+  EXPECT_EQ(g.history_copies[0].from, x);
+  EXPECT_EQ(g.history_copies[0].to, twin);
+  const int end = static_cast<int>(g.passes.size());
+  EXPECT_EQ(g.resources[static_cast<size_t>(x)].last_pass, end);
+  EXPECT_EQ(g.resources[static_cast<size_t>(twin)].last_pass, end);
+  // Before the copy: x from shader write to transfer source, the twin to transfer destination.
+  const Barrier* from = find_barrier(g, g.history_barriers, "x");
+  const Barrier* to = find_barrier(g, g.history_barriers, "x@previous");
+  ASSERT_NE(from, nullptr);
+  ASSERT_NE(to, nullptr);
+  EXPECT_EQ(from->new_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+  EXPECT_EQ(to->new_layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  // The reader then finds the copy in the transfer destination layout of the frame before
+  // (moved as the frame starts, like any carried resource).
+  const Barrier* read = find_barrier(g, g.frame_start, "x@previous");
+  ASSERT_NE(read, nullptr);
+  EXPECT_EQ(read->old_layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+  EXPECT_EQ(read->src_stages, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
+}
+
+TEST(CompilerHistory, OnlyInputsReadThePreviousFrame) {
+  static const Registry registry = make_registry();
+  const std::string e = test::single_compile_error(
+      test::graph_text(R"("x": { "type": "image2d", "format": "rgba16f", "size": 8 },)",
+                       kClear + R"({ "name": "make", "type": "test.blur", "in": { "src": "hdr" },
+                            "out": { "dst": "x@previous" } },
+                          { "name": "shade", "type": "test.shade", "in": { "src": "x" },
+                            "out": { "color": "ldr" } })"),
+      registry);
+  EXPECT_NE(e.find("pass 'make' field 'out.dst'"), std::string::npos) << e;
+  EXPECT_NE(e.find("'x@previous' is the previous frame's version: a pass may read it, not "
+                   "write it"),
+            std::string::npos)
+      << e;
+  const std::string typo = test::single_compile_error(
+      test::graph_text(
+          "", kClear + R"({ "name": "shade", "type": "test.shade", "in": { "src": "hdr@prev" },
+                               "out": { "color": "ldr" } })"),
+      registry);
+  EXPECT_NE(typo.find("or \"previous\" (the previous frame's version) after '@', found 'prev'"),
+            std::string::npos)
+      << typo;
 }
 
 }  // namespace

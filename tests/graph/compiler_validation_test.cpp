@@ -426,7 +426,8 @@ TEST(CompilerValidation, StructuralErrorsFromTheFile) {
             "(\"family.pass\")");
   EXPECT_EQ(errors[3],
             "graphs/test.json:3:70: error: pass 'p' field 'out.color': expected a mip level "
-            "number after '@' (\"name@2\"), found 'x'");
+            "number (\"name@2\") or \"previous\" (the previous frame's version) after '@', "
+            "found 'x'");
   EXPECT_EQ(errors[4],
             "graphs/test.json:4:27: error: field 'outputs.display': expected a resource name "
             "string, found a number");

@@ -87,11 +87,20 @@ void ViewerApp::draw_panel() {
   }
 
   if (header("Timings", "timings", true)) {
-    draw_timings_table(active_);
-    if ((split_ || difference_) && slots_.size() > 1 && compare_ != active_ &&
-        slots_[compare_].instance) {
-      ImGui::Text("B: %s", slot_label(compare_).c_str());
-      draw_timings_table(compare_);
+    if (pair_shown_) {
+      // One merged graph: B's own passes are "b/...", the shared ones ran once for both.
+      std::string shared;
+      for (const std::string& pass : pair_.shared) shared += (shared.empty() ? "" : ", ") + pass;
+      ImGui::TextWrapped("A/B as one graph; shared, run once: %s",
+                         shared.empty() ? "none" : shared.c_str());
+      draw_timings_table(pair_.timings, "pair");
+    } else {
+      draw_timings_table(slots_[active_].timings, "a");
+      if ((split_ || difference_) && slots_.size() > 1 && compare_ != active_ &&
+          slots_[compare_].instance) {
+        ImGui::Text("B: %s", slot_label(compare_).c_str());
+        draw_timings_table(slots_[compare_].timings, "b");
+      }
     }
   }
 
@@ -140,17 +149,15 @@ void ViewerApp::draw_panel() {
   open_sections_.clear();
 }
 
-void ViewerApp::draw_timings_table(size_t slot) {
-  const runtime::TimingsHistory& history = slots_[slot].timings;
+void ViewerApp::draw_timings_table(const runtime::TimingsHistory& history, const std::string& id) {
   const std::vector<float> totals = history.gpu_totals_ms();
   if (!totals.empty()) {
     char overlay[64];
     std::snprintf(overlay, sizeof overlay, "GPU %.2f ms", totals.back());
-    ImGui::PlotLines(("##gpu" + std::to_string(slot)).c_str(), totals.data(),
-                     static_cast<int>(totals.size()), 0, overlay, 0.0f, FLT_MAX,
-                     ImVec2(ImGui::GetContentRegionAvail().x, 40));
+    ImGui::PlotLines(("##gpu" + id).c_str(), totals.data(), static_cast<int>(totals.size()), 0,
+                     overlay, 0.0f, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 40));
   }
-  if (!ImGui::BeginTable(("timings" + std::to_string(slot)).c_str(), 4,
+  if (!ImGui::BeginTable(("timings" + id).c_str(), 4,
                          ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
     return;
   }

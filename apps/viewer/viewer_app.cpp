@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "apps/viewer/presenter.hpp"
+#include "engine/graph/ab_merge.hpp"
 #include "engine/graph/diagnostics.hpp"
 #include "engine/image/image.hpp"
 #include "engine/runtime/output_files.hpp"
@@ -184,6 +185,7 @@ bool ViewerApp::build(size_t index, bool reread_file) {
     slot.instance = std::move(fresh);
     slot.error.clear();
     slot.timings.clear();
+    slot.build_id = ++builds_;
     return true;
   } catch (const std::exception& e) {
     slot.error = e.what();
@@ -274,6 +276,7 @@ void ViewerApp::set_param(size_t index, const std::string& key, const std::strin
   try {
     slot.instance->set_param(key, value);
     slot.edits[key] = value;
+    ++param_edits_;
   } catch (const std::exception& e) {
     report(e.what(), true);
     throw;
@@ -360,6 +363,26 @@ void ViewerApp::render_frame() {
   const runtime::FrameView view = runtime::frame_view(camera_.camera(), aspect);
   const bool two = (split_ || difference_) && slots_.size() > 1 && compare_ != active_;
   if (two && !slots_[compare_].instance && slots_[compare_].error.empty()) build(compare_, false);
+  pair_shown_ = false;
+  if (!two && pair_.instance) pair_ = SharedPair{};  // its memory goes with the split view
+  if (two && inspect_.empty()) {
+    if (runtime::GraphInstance* pair = shared_pair()) {
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        pair->render(view, time_, changes);
+        pair_.timings.add_frame(pair->timings(), std::chrono::duration<double, std::milli>(
+                                                     std::chrono::steady_clock::now() - start)
+                                                     .count());
+        pair_shown_ = true;
+        compose();
+        return;
+      } catch (const std::exception& e) {
+        pair_.instance.reset();
+        pair_.error = e.what();
+        report("the A/B pair runs apart: " + pair_.error, true);
+      }
+    }
+  }
   std::vector<size_t> shown{active_};
   if (two) shown.push_back(compare_);
   for (size_t i : shown) {
@@ -380,6 +403,36 @@ void ViewerApp::render_frame() {
     slot.timings.add_frame(slot.instance->timings(), ms);
   }
   compose();
+}
+
+runtime::GraphInstance* ViewerApp::shared_pair() {
+  const GraphSlot& a = slots_[active_];
+  const GraphSlot& b = slots_[compare_];
+  if (!a.instance || !b.instance) return nullptr;
+  if (pair_.a_build == a.build_id && pair_.b_build == b.build_id && pair_.edits == param_edits_) {
+    return pair_.instance.get();
+  }
+  pair_ = SharedPair{};
+  pair_.a_build = a.build_id;
+  pair_.b_build = b.build_id;
+  pair_.edits = param_edits_;
+  try {
+    const graph::AbMerge merge =
+        graph::merge_for_ab(a.instance->compiled(), b.instance->compiled());
+    runtime::GraphSettings settings;
+    settings.width = options_.width;
+    settings.height = options_.height;
+    pair_.instance = std::make_unique<runtime::GraphInstance>(*runtime_, merge.desc, settings);
+    pair_.shared = merge.shared_passes;
+    report("A/B: " + std::to_string(merge.shared_passes.size()) + " shared passes run once, " +
+               std::to_string(merge.b_passes.size()) + " of B's apart",
+           false);
+  } catch (const std::exception& e) {
+    pair_.instance.reset();
+    pair_.error = e.what();
+    report("the A/B pair runs apart: " + pair_.error, true);
+  }
+  return pair_.instance.get();
 }
 
 void ViewerApp::compose() {
@@ -403,26 +456,34 @@ void ViewerApp::compose() {
       shown_caption_ = "inspect " + inspect_;
       return;
     }
+    // A's outputs, or B's ("b/" in a shared pair): display and linear.
+    const auto outputs = [](runtime::GraphInstance& graph, const std::string& prefix,
+                            const std::string& name, image::ImageRGBA32F& display,
+                            image::ImageRGBA32F& linear) {
+      if (graph.has_output(prefix + "display")) {
+        display = graph.read(prefix + "display");
+        linear = graph.has_output(prefix + "linear") ? graph.read(prefix + "linear") : display;
+      } else if (graph.has_output(prefix + "linear")) {
+        // No display transform in this graph: show its radiance through the sRGB curve.
+        linear = graph.read(prefix + "linear");
+        display = inspect_to_display(linear, 0.0f, false, Channels::RGB);
+      } else {
+        throw std::runtime_error("graph '" + name +
+                                 "' has neither a 'display' nor a 'linear' output to show");
+      }
+    };
+    runtime::GraphInstance& source_a = pair_shown_ ? *pair_.instance : *a.instance;
     image::ImageRGBA32F display, linear;
-    if (a.instance->has_output("display")) {
-      display = a.instance->read("display");
-      linear = a.instance->has_output("linear") ? a.instance->read("linear") : display;
-    } else if (a.instance->has_output("linear")) {
-      // No display transform in this graph: show its radiance through the sRGB curve.
-      linear = a.instance->read("linear");
-      display = inspect_to_display(linear, 0.0f, false, Channels::RGB);
-    } else {
-      throw std::runtime_error("graph '" + a.instance->desc().name +
-                               "' has neither a 'display' nor a 'linear' output to show");
-    }
+    outputs(source_a, "", a.instance->desc().name, display, linear);
     shown_caption_ = a.instance->desc().name;
     if (two) {
       runtime::GraphInstance& b = *slots_[compare_].instance;
-      const image::ImageRGBA32F b_linear =
-          b.has_output("linear") ? b.read("linear") : b.read("display");
-      const image::ImageRGBA32F b_display =
-          b.has_output("display") ? b.read("display")
-                                  : inspect_to_display(b_linear, 0.0f, false, Channels::RGB);
+      image::ImageRGBA32F b_display, b_linear;
+      if (pair_shown_) {
+        outputs(*pair_.instance, graph::kAbPrefix, b.desc().name, b_display, b_linear);
+      } else {
+        outputs(b, "", b.desc().name, b_display, b_linear);
+      }
       if (difference_) {
         display = runtime::difference(display, b_display, difference_gain_);
         linear = runtime::difference(linear, b_linear);
@@ -790,7 +851,14 @@ void ViewerApp::run_command(const ScriptCommand& command) {
     pending_window_shot_ = fs::path(args[0]);
     script_frames_ = 1;
   } else if (name == "timings") {
-    slots_[active_].timings.write_json(args[0], {{"graph", slots_[active_].file.string()}});
+    if (pair_shown_) {
+      std::string shared;
+      for (const std::string& pass : pair_.shared) shared += (shared.empty() ? "" : " ") + pass;
+      pair_.timings.write_json(args[0],
+                               {{"graph", pair_.instance->desc().name}, {"shared_passes", shared}});
+    } else {
+      slots_[active_].timings.write_json(args[0], {{"graph", slots_[active_].file.string()}});
+    }
     report("wrote " + args[0], false);
   } else if (name == "edit-check") {
     check_files();

@@ -53,6 +53,17 @@ class ViewerApp {
     std::map<std::string, std::string> edits;          // parameters changed in the viewer
     std::string error;                                 // of the last failed build, shown
     runtime::TimingsHistory timings{120};
+    uint64_t build_id = 0;  // which build `instance` is (a shared pair follows it)
+  };
+
+  // Split and difference views run the two graphs as one (graph::merge_for_ab), so that the
+  // passes they share run once per frame; the panel names them.
+  struct SharedPair {
+    uint64_t a_build = 0, b_build = 0, edits = 0;  // what it was merged from
+    std::unique_ptr<runtime::GraphInstance> instance;
+    std::vector<std::string> shared;  // passes run once for both
+    std::string error;                // why the two run apart, when they could not merge
+    runtime::TimingsHistory timings{120};
   };
 
   // Builds (or rebuilds) a slot; on failure keeps the previous instance and records the error.
@@ -74,7 +85,10 @@ class ViewerApp {
   void compose();
   void draw_panel();
   void draw_params_panel(size_t slot);
-  void draw_timings_table(size_t slot);
+  void draw_timings_table(const runtime::TimingsHistory& history, const std::string& id);
+  // The merged graph of the active and the compared slot, built when they change; nullptr when
+  // they could not be merged (then each renders on its own).
+  runtime::GraphInstance* shared_pair();
   void draw_inspect_panel();
   void draw_lights_panel();
   void handle_held_keys(double dt);
@@ -93,6 +107,10 @@ class ViewerApp {
   bool imgui_ready_ = false;
 
   std::vector<GraphSlot> slots_;
+  uint64_t builds_ = 0;       // numbers each successful build
+  uint64_t param_edits_ = 0;  // counts live parameter edits
+  SharedPair pair_;
+  bool pair_shown_ = false;  // the last frame came from pair_
   size_t active_ = 0;
   size_t compare_ = 0;
   bool split_ = false;

@@ -297,6 +297,12 @@ void register_path_tracer(graph::Registry& registry) {
        "stop adding samples after this many per pixel (0: never)",
        true},
   };
+  // The running sums: the mean's extent, one layer per sum.
+  graph::set_size_rule(info, "accumulation", [](const graph::SizeQuery& query) {
+    graph::DerivedSize size = graph::same_layout_as("linear")(query);
+    size.layers = kAccumulationLayers;
+    return size;
+  });
   info.validate = validate_path_tracer;
   registry.add(std::move(info), [] { return std::make_unique<PathTracerPass>(); });
 }

@@ -135,6 +135,29 @@ TEST(Samples, AbCompareWritesBothImagesTheirDifferenceAndBothTimings) {
   EXPECT_NEAR(mean_rgb(d), mean_abs_difference(a, b), 2e-3);
   EXPECT_GT(mean_rgb(d), 0.01) << "more ambient light in B must show";
   EXPECT_GT(read_json(dir / "ab/b-timings.json")["passes"].size(), 3u);
+  // Run as one graph, the passes before the ambient term are shared and the images unchanged.
+  EXPECT_NE(r.out.find("shared passes run once: gbuffer shadows lighting"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("merged display vs separate: A max |d| 0, B max |d| 0"), std::string::npos)
+      << r.out;
+  EXPECT_TRUE(fs::exists(dir / "ab" / "merged-timings.json"));
+
+  // Two variants of vct.json that differ only in the cone count share the voxel pipeline.
+  const ProcessResult variants =
+      run_sample(SAMPLE_AB_COMPARE,
+                 {"--a", std::string(VOXGI_SOURCE_DIR) + "/graphs/vct.json", "--b",
+                  std::string(VOXGI_SOURCE_DIR) + "/graphs/vct.json", "--variant-b", "cones16",
+                  "--set-a", "voxel.resolution=32", "--set-b", "voxel.resolution=32", "--frames",
+                  "2", "--width", "32", "--height", "32", "--out", "variants"},
+                 dir);
+  ASSERT_EQ(variants.exit_code, 0) << variants.describe();
+  const size_t line = variants.out.find("shared passes run once:");
+  ASSERT_NE(line, std::string::npos) << variants.out;
+  const std::string shared = variants.out.substr(line, variants.out.find('\n', line) - line);
+  for (const char* pass : {" voxelize", " inject", " filter", " gbuffer"}) {
+    EXPECT_NE(shared.find(pass), std::string::npos) << shared;
+  }
+  EXPECT_EQ(shared.find("cone_trace"), std::string::npos) << shared;
 
   // The same graph twice renders the same image: the difference is zero.
   const ProcessResult same = run_sample(SAMPLE_AB_COMPARE,

@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -174,6 +176,69 @@ quit
   EXPECT_GT(mean_rgb(png(shots / "bright_resized.png")), mean_rgb(plain) + 0.05);
   EXPECT_LT(compare_images(plain, png(shots / "plain_again.png")).max_abs, 1e-6);
   EXPECT_NE(run.err.find("graph.json #small_shadows"), std::string::npos) << run.err;
+}
+
+// Split view of two variants of one file runs them as one graph: the passes they share
+// (G-buffer, shadows, direct light) once, B's ambient and what follows apart. Each half of the
+// split frame is what the variant shows alone, and the timings name the shared passes.
+TEST_F(ViewerSessionTest, SplitViewOfTwoVariantsRunsSharedPassesOnce) {
+  write_file(dir_ / "graph.json", test_graph_text(0.05));
+  write_file(dir_ / "session.txt", R"(frames 2
+screenshot shots/a
+key 2
+frames 2
+screenshot shots/b
+key 1
+split on
+wipe 0.5
+frames 2
+screenshot shots/split
+timings shots/pair.json
+split off
+frames 1
+timings shots/alone.json
+quit
+)");
+  const ProcessResult run =
+      viewer({"--graph", "graph.json", "--graph", "graph.json#bright", "--script", "session.txt"});
+  ASSERT_EQ(run.exit_code, 0) << run.describe();
+  EXPECT_EQ(run.err.find("vulkan validation"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("shared passes run once"), std::string::npos) << run.err;
+  const fs::path shots = dir_ / "shots";
+  const image::ImageRGBA32F a = png(shots / "a.png");
+  const image::ImageRGBA32F b = png(shots / "b.png");
+  const image::ImageRGBA32F split = png(shots / "split.png");
+  ASSERT_EQ(split.width, a.width);
+  float left = 0.0f, right = 0.0f;
+  for (uint32_t y = 0; y < split.height; ++y) {
+    for (uint32_t x = 0; x < split.width; ++x) {
+      for (uint32_t c = 0; c < 3; ++c) {
+        const size_t i = (size_t(y) * split.width + x) * 4 + c;
+        if (x < split.width * 4 / 10)
+          left = std::max(left, std::abs(split.pixels[i] - a.pixels[i]));
+        if (x > split.width * 6 / 10)
+          right = std::max(right, std::abs(split.pixels[i] - b.pixels[i]));
+      }
+    }
+  }
+  EXPECT_LE(left, 1.5f / 255.0f) << "the left half is A alone";
+  EXPECT_LE(right, 1.5f / 255.0f) << "the right half is B alone";
+
+  std::ifstream pair_file(shots / "pair.json");
+  const nlohmann::json pair = nlohmann::json::parse(pair_file);
+  const std::string shared = pair["shared_passes"].get<std::string>();
+  for (const char* pass : {"gbuffer", "shadows", "lighting"}) {
+    EXPECT_NE(shared.find(pass), std::string::npos) << shared;
+  }
+  EXPECT_EQ(shared.find("ambient"), std::string::npos) << shared;
+  std::vector<std::string> passes;
+  for (const auto& p : pair["passes"]) passes.push_back(p["pass"].get<std::string>());
+  EXPECT_EQ(std::count(passes.begin(), passes.end(), "gbuffer"), 1);
+  EXPECT_EQ(std::count(passes.begin(), passes.end(), "b/ambient"), 1);
+  EXPECT_EQ(std::count(passes.begin(), passes.end(), "b/gbuffer"), 0);
+  // Split off: the active graph alone again.
+  std::ifstream alone_file(shots / "alone.json");
+  EXPECT_FALSE(nlohmann::json::parse(alone_file).contains("shared_passes"));
 }
 
 TEST_F(ViewerSessionTest, ScreenshotMatchesVoxgiRenderOfTheSameFrame) {

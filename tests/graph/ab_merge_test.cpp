@@ -9,11 +9,9 @@ namespace voxgi::graph {
 namespace {
 
 using test::compile_text;
-using test::make_registry;
 
 const Registry& registry() {
-  static const Registry r = make_registry();
-  return r;
+  return test::shared_registry();
 }
 
 // c1 -> hdr -> blur -> t1 -> final -> ldr, with c2 -> h2 read by final too; a persistent

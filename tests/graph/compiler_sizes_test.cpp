@@ -10,11 +10,9 @@ namespace voxgi::graph {
 namespace {
 
 using test::compile_text;
-using test::make_registry;
 
 const Registry& registry() {
-  static const Registry r = make_registry();
-  return r;
+  return test::shared_registry();
 }
 
 CompiledGraph compile_graph(const std::string& resources, const std::string& passes,

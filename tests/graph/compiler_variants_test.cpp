@@ -9,11 +9,9 @@ namespace voxgi::graph {
 namespace {
 
 using test::compile_text;
-using test::make_registry;
 
 const Registry& registry() {
-  static const Registry r = make_registry();
-  return r;
+  return test::shared_registry();
 }
 
 // One graph parameter (the clear value) and two variants; `extra` adds variants (each ending in

@@ -140,6 +140,12 @@ inline Registry make_registry() {
   return r;
 }
 
+// One registry of the test pass types per test binary, made on first use.
+inline const Registry& shared_registry() {
+  static const Registry registry = make_registry();
+  return registry;
+}
+
 inline const char* kTestFile = "graphs/test.json";
 
 inline CompiledGraph compile_text(const std::string& text, const Registry& registry,

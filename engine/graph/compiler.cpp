@@ -735,6 +735,7 @@ class Compiler {
       w.usable = w.info && unique;
       work_.push_back(std::move(w));
     }
+    bind_deferred_previous();
     report_never_sized();
   }
 
@@ -853,68 +854,26 @@ class Compiler {
           }
           continue;
         }
-        int index = resource_index(b.resource);
+        const int index = resource_index(b.resource);
         if (index < 0) {
           diags_.error(b.loc, pd.name, field, "unknown resource '" + b.resource + "'",
                        did_you_mean(b.resource, resource_names()));
           continue;
         }
-        if (!resource_ok_[static_cast<size_t>(index)]) {
-          report_unsized(static_cast<size_t>(index), pd.name, b.loc, field);
-          continue;  // otherwise already reported
-        }
-        if (b.previous) {
-          if (!is_input) {
-            diags_.error(b.loc, pd.name, field,
-                         "'" + b.resource +
-                             "@previous' is the previous frame's version: a pass may read it, "
-                             "not write it");
-            continue;
-          }
-          index = history_twin(index);
-        }
-        const ResourceInfo& info = graph_.resources[static_cast<size_t>(index)].info;
-        if (!(spec->kinds & static_cast<uint32_t>(info.kind))) {
+        if (b.previous && !is_input) {
           diags_.error(b.loc, pd.name, field,
-                       "resource '" + b.resource + "' is a " + kind_name(info.kind) +
-                           ", but the slot accepts " + kinds_text(spec->kinds));
+                       "'" + b.resource +
+                           "@previous' is the previous frame's version: a pass may read it, "
+                           "not write it");
           continue;
         }
-        if (!spec->formats.empty() && std::find(spec->formats.begin(), spec->formats.end(),
-                                                info.format) == spec->formats.end()) {
-          std::vector<std::string> accepted;
-          for (VkFormat f : spec->formats) accepted.push_back(format_name(f));
-          diags_.error(b.loc, pd.name, field,
-                       "resource '" + b.resource + "' has format " + format_name(info.format) +
-                           ", but the slot accepts " + quoted_list(accepted));
+        if (b.previous && sizing_[static_cast<size_t>(index)] == Sizing::ByWriter) {
+          // A temporal loop reads the previous frame before the writer that sizes the
+          // resource: bound once every pass has been seen (bind_deferred_previous).
+          deferred_previous_.push_back({work_.size(), &b, spec, index, field});
           continue;
         }
-        if (b.mip >= 0) {
-          if (info.kind == ResourceKind::Buffer) {
-            diags_.error(b.loc, pd.name, field,
-                         "'@" + std::to_string(b.mip) + "' selects a mip level, but '" +
-                             b.resource + "' is a buffer");
-            continue;
-          }
-          if (static_cast<uint32_t>(b.mip) >= info.mip_levels) {
-            diags_.error(b.loc, pd.name, field,
-                         "mip " + std::to_string(b.mip) + " is out of range: resource '" +
-                             b.resource + "' has " + std::to_string(info.mip_levels) +
-                             " mip level(s) (0.." + std::to_string(info.mip_levels - 1) + ")");
-            continue;
-          }
-        }
-        SlotBinding sb;
-        sb.slot = b.slot;
-        sb.is_input = is_input;
-        sb.spec = spec;
-        sb.resource = index;
-        sb.info = info;
-        sb.info.mip = b.mip;
-        sb.state = state_for(spec->access, spec->stages, info.kind, info.format);
-        sb.loc = b.loc;
-        check_layout_conflicts(w, sb, field);
-        w.bindings.push_back(std::move(sb));
+        bind(w, b, is_input, spec, index, field);
       }
       for (const SlotSpec& s : specs) {
         if (!s.optional && !mentioned.count(s.name)) {
@@ -942,6 +901,69 @@ class Compiler {
     resource_ok_.push_back(true);
     sizing_.push_back(Sizing::ByGraph);
     return twin_index;
+  }
+
+  // One slot bound to resource `index` (its "@previous" twin for b.previous), checked against
+  // the slot's kinds, formats and mips.
+  void bind(PassWork& w, const BindingDesc& b, bool is_input, const SlotSpec* spec, int index,
+            const std::string& field) {
+    const PassDesc& pd = *w.desc;
+    if (!resource_ok_[static_cast<size_t>(index)]) {
+      report_unsized(static_cast<size_t>(index), pd.name, b.loc, field);
+      return;  // otherwise already reported
+    }
+    if (b.previous) index = history_twin(index);
+    const ResourceInfo& info = graph_.resources[static_cast<size_t>(index)].info;
+    if (!(spec->kinds & static_cast<uint32_t>(info.kind))) {
+      diags_.error(b.loc, pd.name, field,
+                   "resource '" + b.resource + "' is a " + kind_name(info.kind) +
+                       ", but the slot accepts " + kinds_text(spec->kinds));
+      return;
+    }
+    if (!spec->formats.empty() &&
+        std::find(spec->formats.begin(), spec->formats.end(), info.format) == spec->formats.end()) {
+      std::vector<std::string> accepted;
+      for (VkFormat f : spec->formats) accepted.push_back(format_name(f));
+      diags_.error(b.loc, pd.name, field,
+                   "resource '" + b.resource + "' has format " + format_name(info.format) +
+                       ", but the slot accepts " + quoted_list(accepted));
+      return;
+    }
+    if (b.mip >= 0) {
+      if (info.kind == ResourceKind::Buffer) {
+        diags_.error(b.loc, pd.name, field,
+                     "'@" + std::to_string(b.mip) + "' selects a mip level, but '" + b.resource +
+                         "' is a buffer");
+        return;
+      }
+      if (static_cast<uint32_t>(b.mip) >= info.mip_levels) {
+        diags_.error(b.loc, pd.name, field,
+                     "mip " + std::to_string(b.mip) + " is out of range: resource '" + b.resource +
+                         "' has " + std::to_string(info.mip_levels) + " mip level(s) (0.." +
+                         std::to_string(info.mip_levels - 1) + ")");
+        return;
+      }
+    }
+    SlotBinding sb;
+    sb.slot = b.slot;
+    sb.is_input = is_input;
+    sb.spec = spec;
+    sb.resource = index;
+    sb.info = info;
+    sb.info.mip = b.mip;
+    sb.state = state_for(spec->access, spec->stages, info.kind, info.format);
+    sb.loc = b.loc;
+    check_layout_conflicts(w, sb, field);
+    w.bindings.push_back(std::move(sb));
+  }
+
+  // The "@previous" reads of resources their writer sized after the reader.
+  void bind_deferred_previous() {
+    for (const DeferredPrevious& d : deferred_previous_) {
+      PassWork& w = work_[d.work];
+      if (sizing_[static_cast<size_t>(d.index)] == Sizing::ByWriter) continue;  // never sized
+      bind(w, *d.binding, true, d.spec, d.index, d.field);
+    }
   }
 
   // One pass may bind a resource to several slots only where the layouts agree.
@@ -1416,6 +1438,14 @@ class Compiler {
   std::vector<PassDesc> passes_;                   // desc_.passes with repeats expanded
   enum class Sizing { ByGraph, ByWriter, Derived, Failed };
   std::vector<Sizing> sizing_;  // per resource
+  struct DeferredPrevious {
+    size_t work;  // index into work_
+    const BindingDesc* binding;
+    const SlotSpec* spec;
+    int index;  // the resource whose previous version is read
+    std::string field;
+  };
+  std::vector<DeferredPrevious> deferred_previous_;
   const Registry& registry_;
   const CompileOptions& options_;
   DiagnosticList diags_;

@@ -542,6 +542,26 @@ TEST(CompilerHistory, PreviousFrameReadsNeedNoOrderAndKeepTheWriter) {
   EXPECT_EQ(read->src_stages, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT);
 }
 
+// A temporal loop whose writer sizes the resource (pass-owned size) after the reader of the
+// previous frame's version: the read is bound once the writer has sized it.
+TEST(CompilerHistory, PreviousFrameOfAResourceItsLaterWriterSizes) {
+  const CompiledGraph g = compile_graph(
+      R"("vol": { "type": "clipmap", "persistent": true },
+         "t": { "type": "image2d", "format": "rgba16f", "size": 8 },)",
+      R"({ "name": "use", "type": "test.blur", "in": { "src": "vol@previous" }, "out": { "dst": "t" } },
+         { "name": "make", "type": "test.sized", "params": { "resolution": 16, "levels": 3 },
+           "in": {}, "out": { "volume": "vol" } },
+         { "name": "shade", "type": "test.shade", "in": { "src": "t", "extra": "vol" },
+           "out": { "color": "ldr" } })");
+  const SlotBinding* src = g.find_pass("use")->binding("src");
+  ASSERT_NE(src, nullptr);
+  const CompiledResource& twin = g.resources[static_cast<size_t>(src->resource)];
+  EXPECT_EQ(twin.info.name, "vol@previous");
+  EXPECT_EQ(twin.info.clipmap_levels, 3u);
+  EXPECT_EQ(twin.info.extent.width, 16u);
+  EXPECT_EQ(g.history_copies.size(), 1u);
+}
+
 TEST(CompilerHistory, OnlyInputsReadThePreviousFrame) {
   static const Registry registry = make_registry();
   const std::string e = test::single_compile_error(

@@ -276,7 +276,7 @@ void ViewerApp::set_param(size_t index, const std::string& key, const std::strin
   try {
     slot.instance->set_param(key, value);
     slot.edits[key] = value;
-    ++param_edits_;
+    if (!edit_pair(index, key, value)) ++param_edits_;  // the pair is merged again
   } catch (const std::exception& e) {
     report(e.what(), true);
     throw;
@@ -403,6 +403,22 @@ void ViewerApp::render_frame() {
     slot.timings.add_frame(slot.instance->timings(), ms);
   }
   compose();
+}
+
+bool ViewerApp::edit_pair(size_t index, const std::string& key, const std::string& value) {
+  if (!pair_.instance) return false;
+  if (index != active_ && index != compare_) return true;  // not in the pair
+  const std::string pass = key.substr(0, key.find('.'));
+  // A shared pass edited on one side no longer runs alike on both: merge again.
+  if (std::find(pair_.shared.begin(), pair_.shared.end(), pass) != pair_.shared.end()) {
+    return false;
+  }
+  try {
+    pair_.instance->set_param(index == active_ ? key : graph::kAbPrefix + key, value);
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
 runtime::GraphInstance* ViewerApp::shared_pair() {

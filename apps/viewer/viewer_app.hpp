@@ -89,6 +89,9 @@ class ViewerApp {
   // The merged graph of the active and the compared slot, built when they change; nullptr when
   // they could not be merged (then each renders on its own).
   runtime::GraphInstance* shared_pair();
+  // Applies a slot's parameter edit to the pair as well; false when it must be merged again
+  // (the edited pass was shared, or the pair refuses the edit).
+  bool edit_pair(size_t slot, const std::string& key, const std::string& value);
   void draw_inspect_panel();
   void draw_lights_panel();
   void handle_held_keys(double dt);

@@ -194,6 +194,12 @@ wipe 0.5
 frames 2
 screenshot shots/split
 timings shots/pair.json
+set ambient.radiance=0.3
+frames 1
+screenshot shots/live
+set lighting.pcf_radius=2
+frames 1
+timings shots/remerged.json
 split off
 frames 1
 timings shots/alone.json
@@ -236,6 +242,22 @@ quit
   EXPECT_EQ(std::count(passes.begin(), passes.end(), "gbuffer"), 1);
   EXPECT_EQ(std::count(passes.begin(), passes.end(), "b/ambient"), 1);
   EXPECT_EQ(std::count(passes.begin(), passes.end(), "b/gbuffer"), 0);
+  // An edit of A's own ambient pass applies to the pair live (A's half brightens, no new
+  // merge); an edit of a shared pass (lighting) makes the two differ there: merged again, with
+  // lighting and what follows run apart.
+  const auto count = [&](const std::string& text) {
+    size_t n = 0;
+    for (size_t at = run.err.find(text); at != std::string::npos; at = run.err.find(text, at + 1))
+      ++n;
+    return n;
+  };
+  EXPECT_EQ(count("shared passes run once"), 2u) << run.err;
+  EXPECT_GT(mean_rgb(png(shots / "live.png")), mean_rgb(split) + 0.02);
+  std::ifstream remerged_file(shots / "remerged.json");
+  const std::string remerged =
+      nlohmann::json::parse(remerged_file)["shared_passes"].get<std::string>();
+  EXPECT_NE(remerged.find("gbuffer"), std::string::npos) << remerged;
+  EXPECT_EQ(remerged.find("lighting"), std::string::npos) << remerged;
   // Split off: the active graph alone again.
   std::ifstream alone_file(shots / "alone.json");
   EXPECT_FALSE(nlohmann::json::parse(alone_file).contains("shared_passes"));

@@ -323,17 +323,18 @@ void Executor::run_setup(LivePass& live) {
 
 void Executor::fill_frame(const FrameInput& input) {
   FrameUniforms& u = frame_.uniforms;
-  u.view = input.view;
-  u.proj = input.proj;
-  u.view_proj = input.proj * input.view;
-  u.inv_view = glm::inverse(input.view);
-  u.inv_proj = glm::inverse(input.proj);
+  const CameraView& camera = input.camera;
+  u.view = camera.view;
+  u.proj = camera.proj;
+  u.view_proj = camera.proj * camera.view;
+  u.inv_view = glm::inverse(camera.view);
+  u.inv_proj = glm::inverse(camera.proj);
   u.inv_view_proj = glm::inverse(u.view_proj);
-  u.camera_position = glm::vec4(input.camera_position, 1.0f);
+  u.camera_position = glm::vec4(camera.position, 1.0f);
   const float w = static_cast<float>(std::max(1u, graph_.viewport_width));
   const float h = static_cast<float>(std::max(1u, graph_.viewport_height));
   u.viewport = glm::vec4(w, h, 1.0f / w, 1.0f / h);
-  u.clip = glm::vec4(input.znear, input.zfar, static_cast<float>(input.time),
+  u.clip = glm::vec4(camera.znear, camera.zfar, static_cast<float>(input.time),
                      static_cast<float>(frame_.index));
   u.scene_min = glm::vec4(scene_min_, light_count_);
   u.scene_max = glm::vec4(scene_max_, 0.0f);

@@ -34,12 +34,10 @@ class Executor {
   // passes and runs their setup(). The scene objects must outlive the executor's use of them.
   void build(const CompiledGraph& graph, const scene::Scene& scene, scene::GpuScene& gpu_scene);
 
+  // What changed drives the passes' skip decisions; the first frame of a build treats
+  // everything as changed whatever it says.
   struct FrameInput {
-    glm::mat4 view{1.0f};
-    glm::mat4 proj{1.0f};
-    glm::vec3 camera_position{0.0f};
-    float znear = 0.1f;
-    float zfar = 100.0f;
+    CameraView camera;
     double time = 0.0;
     bool camera_changed = true;
     bool lights_changed = true;

@@ -12,6 +12,15 @@ class Buffer;
 namespace voxgi::graph {
 
 // Mirrors `FrameUniforms` in shaders/lib/frame.glsl (std140). Keep the two in step.
+// Where a frame is seen from.
+struct CameraView {
+  glm::mat4 view{1.0f};
+  glm::mat4 proj{1.0f};
+  glm::vec3 position{0.0f};
+  float znear = 0.1f;
+  float zfar = 100.0f;
+};
+
 struct alignas(16) FrameUniforms {
   glm::mat4 view;
   glm::mat4 proj;

@@ -29,17 +29,12 @@ FrameView look_at_view(glm::vec3 eye, glm::vec3 target, const scene::Camera& cam
 }
 
 void FrameDriver::render(const FrameView& view, double time, const FrameChanges& changes) {
-  const bool first = frames_ == 0;
   graph::Executor::FrameInput input;
-  input.view = view.view;
-  input.proj = view.proj;
-  input.camera_position = view.position;
-  input.znear = view.znear;
-  input.zfar = view.zfar;
+  input.camera = view;
   input.time = time;
-  input.camera_changed = changes.camera || first;
-  input.lights_changed = changes.lights || first;
-  input.geometry_changed = changes.geometry || first;
+  input.camera_changed = changes.camera;
+  input.lights_changed = changes.lights;
+  input.geometry_changed = changes.geometry;
   executor_.render(input);
   ++frames_;
 }

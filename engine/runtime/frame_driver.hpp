@@ -1,8 +1,7 @@
 #pragma once
 // The one way frames are made from a camera: the CLI, the bench, the viewer, the samples and
 // the test harnesses all turn their view into an executor frame here, so what "changed" means
-// to the passes' skip decisions (and that an executor's first frame recomputes everything) is
-// decided in one place.
+// to the passes' skip decisions is decided in one place.
 
 #include <glm/glm.hpp>
 
@@ -13,14 +12,8 @@
 
 namespace voxgi::runtime {
 
-// Where the frame is seen from.
-struct FrameView {
-  glm::mat4 view{1.0f};
-  glm::mat4 proj{1.0f};
-  glm::vec3 position{0.0f};
-  float znear = 0.1f;
-  float zfar = 100.0f;
-};
+// Where the frame is seen from (the executor's type).
+using FrameView = graph::CameraView;
 // A scene camera (its own aspect ratio when it has one, else the viewport's).
 FrameView frame_view(const scene::Camera& camera, float viewport_aspect);
 // From `eye` towards `target` through the lens of `camera` (field of view, clip planes); the
@@ -35,15 +28,15 @@ struct FrameChanges {
   bool geometry = true;
 };
 
-// Renders frames of one executor and counts them; the first frame after construction or
-// restart() (a rebuilt graph) treats everything as changed, whatever the caller says.
+// Renders frames of one executor and counts them. (The executor itself treats the first
+// frame after a build as a change of everything.)
 class FrameDriver {
  public:
   explicit FrameDriver(graph::Executor& executor) : executor_(executor) {}
 
   void render(const FrameView& view, double time, const FrameChanges& changes);
-  void restart() { frames_ = 0; }
   uint64_t frames() const { return frames_; }
+  void restart() { frames_ = 0; }  // counting from a rebuild
 
  private:
   graph::Executor& executor_;

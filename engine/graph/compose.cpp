@@ -1,8 +1,6 @@
 #include "engine/graph/compose.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
 #include <optional>
 #include <system_error>
 #include <vector>
@@ -15,16 +13,6 @@ namespace {
 
 using json::Member;
 using json::Value;
-
-std::string number_text(double n) {
-  char text[32];
-  if (std::floor(n) == n && std::fabs(n) < 1e15) {
-    std::snprintf(text, sizeof text, "%.0f", n);
-  } else {
-    std::snprintf(text, sizeof text, "%.17g", n);
-  }
-  return text;
-}
 
 // "{{name}}" occurrences in `text`, as (start, end, name); `end` is one past the closing braces.
 struct Placeholder {
@@ -130,7 +118,7 @@ class Substituter {
                          "' is null here, which only removes a value that is exactly '{{" + p.name +
                          "}}'");
       } else if (arg->is_number()) {
-        out += number_text(arg->as_number());
+        out += json::number_text(arg->as_number());
       } else if (arg->is_bool()) {
         out += arg->as_bool() ? "true" : "false";
       } else {

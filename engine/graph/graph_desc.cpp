@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -27,17 +26,6 @@ const VariantDesc* GraphDesc::find_variant(std::string_view variant_name) const 
 }
 
 namespace {
-
-// A number as --set would write it: integers without a fraction, others round-tripping.
-std::string number_text(double value) {
-  char text[32];
-  if (value == std::floor(value) && std::fabs(value) < 1e15) {
-    std::snprintf(text, sizeof(text), "%.0f", value);
-  } else {
-    std::snprintf(text, sizeof(text), "%.17g", value);
-  }
-  return text;
-}
 
 void add_family(const std::string& type, std::set<std::string>& names) {
   const size_t dot = type.find('.');
@@ -195,7 +183,7 @@ class DescParser {
         } else if (s.value.is_bool()) {
           value = s.value.as_bool() ? "true" : "false";
         } else if (s.value.is_number()) {
-          value = number_text(s.value.as_number());
+          value = json::number_text(s.value.as_number());
         } else {
           diags_.error(s.value.loc(), {}, field + ".set." + s.key,
                        std::string("expected a number, string or boolean, found ") +

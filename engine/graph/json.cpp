@@ -2,6 +2,8 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 namespace voxgi::graph::json {
@@ -45,6 +47,16 @@ Value Value::make_object(std::vector<Member> members, SourceLoc loc) {
   v.kind_ = Kind::Object;
   v.members_ = std::move(members);
   return v;
+}
+
+std::string number_text(double value) {
+  char text[32];
+  if (std::floor(value) == value && std::fabs(value) < 1e15) {
+    std::snprintf(text, sizeof text, "%.0f", value);
+  } else {
+    std::snprintf(text, sizeof text, "%.17g", value);
+  }
+  return text;
 }
 
 const char* kind_name(Value::Kind kind) {

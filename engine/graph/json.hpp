@@ -62,6 +62,10 @@ struct Member {
 
 const char* kind_name(Value::Kind kind);
 
+// A number as a graph file or --set writes it: integers without a fraction, others so that
+// they read back exactly.
+std::string number_text(double value);
+
 // Throws GraphError with one diagnostic "file:line:col: error: <what was expected>". Every
 // location gets `included_from` (for a fragment: where it was included, innermost first).
 Value parse(std::string_view text, const std::string& file_name,

@@ -40,6 +40,7 @@ struct VoxelDrawPush {
   glm::vec4 level_min_size;
   glm::ivec4 box_min;  // w: viewport edge
   glm::ivec4 box_max;  // w: scratch words per voxel
+  glm::ivec4 origin;   // xyz: the window's min corner in voxels from the anchor
 };
 struct VoxelResolvePush {
   glm::ivec4 box_min;  // w: level
@@ -51,8 +52,9 @@ struct VoxelClearPush {
 };
 
 constexpr uint32_t kHdrWords = 9;
-constexpr uint32_t kHdrWordsWithEmission = 15;
+constexpr uint32_t kHdrWordsWithEmission = 16;
 constexpr uint32_t kRgba8Words = 3;
+constexpr uint32_t kFrontWords = 6;  // stacked_surfaces = front: one word per facing
 
 bool is_power_of_two(uint32_t v) {
   return v != 0 && (v & (v - 1)) == 0;
@@ -68,9 +70,11 @@ bool node_may_move(const scene::Scene& scene, int node) {
 }
 
 // 32-bit words of the scratch record of one voxel.
-uint32_t scratch_words_per_voxel(const graph::PassDeclaration& pass) {
-  if (pass.choice("strategy") == "average_rgba8") return kRgba8Words;
-  return pass.has("emission") ? kHdrWordsWithEmission : kHdrWords;
+template <typename Declaration>
+uint32_t scratch_words_per_voxel(const Declaration& pass) {
+  const uint32_t front = pass.choice("stacked_surfaces") == "front" ? kFrontWords : 0;
+  if (pass.choice("strategy") == "average_rgba8") return kRgba8Words + front;
+  return (pass.has("emission") ? kHdrWordsWithEmission : kHdrWords) + front;
 }
 
 // The clipmaps' size from parameters "resolution" and "levels", for a graph that leaves the
@@ -89,9 +93,7 @@ graph::DerivedSize clipmap_size(const graph::SizeQuery& query) {
 graph::DerivedSize scratch_size(const graph::SizeQuery& query) {
   graph::DerivedSize size = clipmap_size(query);
   if (!size.unavailable.empty()) return size;
-  const uint32_t words = query.choice("strategy") == "average_rgba8"
-                             ? kRgba8Words
-                             : (query.has("emission") ? kHdrWordsWithEmission : kHdrWords);
+  const uint32_t words = scratch_words_per_voxel(query);
   size.bytes = VkDeviceSize(size.resolution) * size.resolution * size.resolution * words * 4;
   return size;
 }
@@ -152,6 +154,7 @@ class VoxelizePass final : public graph::Pass {
     const std::string where = "pass '" + ctx.pass_name() + "' (common.voxelize): ";
     has_emission_ = ctx.has("emission");
     rgba8_ = ctx.choice("strategy") == "average_rgba8";
+    stacked_front_ = ctx.choice("stacked_surfaces") == "front";
     stride_ = scratch_words_per_voxel(ctx);
     capacity_voxels_ =
         static_cast<int64_t>(ctx.info("scratch").buffer_size / (VkDeviceSize(stride_) * 4));
@@ -180,7 +183,9 @@ class VoxelizePass final : public graph::Pass {
     desc.name = ctx.pass_name();
     desc.vertex = graph::compile_pass_shader(ctx, "common/voxelize.vert", defines);
     desc.geometry = graph::compile_pass_shader(ctx, "common/voxelize.geom", defines);
-    desc.fragment = graph::compile_pass_shader(ctx, "common/voxelize.frag", defines);
+    std::vector<gpu::ShaderDefine> accumulate_defines = defines;
+    if (stacked_front_) accumulate_defines.push_back({"VOXEL_FRONT", "2"});
+    desc.fragment = graph::compile_pass_shader(ctx, "common/voxelize.frag", accumulate_defines);
     desc.layout.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}};
     desc.layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};
     desc.layout.push_constant_size = sizeof(VoxelDrawPush);
@@ -193,6 +198,14 @@ class VoxelizePass final : public graph::Pass {
     desc.cull = VK_CULL_MODE_NONE;
     desc.conservative_rasterization = conservative == 2;
     draw_pipeline_.emplace(ctx.gpu(), desc);
+    front_pipeline_.reset();
+    if (stacked_front_) {
+      std::vector<gpu::ShaderDefine> front_defines = defines;
+      front_defines.push_back({"VOXEL_FRONT", "1"});
+      desc.name = ctx.pass_name() + " (front surfaces)";
+      desc.fragment = graph::compile_pass_shader(ctx, "common/voxelize.frag", front_defines);
+      front_pipeline_.emplace(ctx.gpu(), desc);
+    }
 
     std::vector<gpu::Binding> resolve_bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
@@ -403,6 +416,36 @@ class VoxelizePass final : public graph::Pass {
     ctx.barrier_within_pass("scratch");
   }
 
+  void draw_objects(graph::PassContext& ctx, const gpu::GraphicsPipeline& pipeline,
+                    const VoxelDrawPush& push,
+                    const std::vector<const scene::GpuScene::Draw*>& draws, uint32_t edge) {
+    VkCommandBuffer cmd = ctx.cmd();
+    const scene::GpuScene& gpu_scene = ctx.gpu_scene();
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, {edge, edge}};
+    rendering.layerCount = 1;
+    vkCmdBeginRendering(cmd, &rendering);
+    pipeline.bind(cmd);
+    gpu::GraphicsPipeline::set_viewport(cmd, edge, edge);
+    gpu::DescriptorWriter writer;
+    writer.storage_buffer(0, *ctx.resource("scratch").buffer);
+    writer.push(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout());
+    VkDescriptorSet scene_set = gpu_scene.descriptor_set();
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), 1, 1,
+                            &scene_set, 0, nullptr);
+    pipeline.push_constants(cmd, push);
+    VkDeviceSize offset = 0;
+    VkBuffer vertices = gpu_scene.vertices().handle();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+    vkCmdBindIndexBuffer(cmd, gpu_scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
+    for (const scene::GpuScene::Draw* draw : draws) {
+      vkCmdDrawIndexed(cmd, draw->index_count, 1, draw->first_index, draw->vertex_offset,
+                       draw->instance);
+    }
+    vkCmdEndRendering(cmd);
+    ctx.barrier_within_pass("scratch");
+  }
+
   void voxelize_chunk(graph::PassContext& ctx, const VoxelBox& chunk, const glm::ivec3& origin,
                       const std::vector<WorldBox>& instance_boxes) {
     VkCommandBuffer cmd = ctx.cmd();
@@ -420,35 +463,17 @@ class VoxelizePass final : public graph::Pass {
       if (intersects(touched, chunk)) draws.push_back(&draw);
     }
     if (!draws.empty()) {
-      VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-      rendering.renderArea = {{0, 0}, {edge, edge}};
-      rendering.layerCount = 1;
-      vkCmdBeginRendering(cmd, &rendering);
-      draw_pipeline_->bind(cmd);
-      gpu::GraphicsPipeline::set_viewport(cmd, edge, edge);
-      gpu::DescriptorWriter writer;
-      writer.storage_buffer(0, *ctx.resource("scratch").buffer);
-      writer.push(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw_pipeline_->layout());
-      VkDescriptorSet scene_set = gpu_scene.descriptor_set();
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw_pipeline_->layout(), 1, 1,
-                              &scene_set, 0, nullptr);
       VoxelDrawPush push{};
       push.anchor = glm::vec4(anchor_f_, 0.0f);
       push.level_min_size =
           glm::vec4(glm::vec3(glm::dvec3(origin) * size), static_cast<float>(size));
       push.box_min = glm::ivec4(chunk.min, static_cast<int>(edge));
       push.box_max = glm::ivec4(chunk.max, static_cast<int>(stride_));
-      draw_pipeline_->push_constants(cmd, push);
-      VkDeviceSize offset = 0;
-      VkBuffer vertices = gpu_scene.vertices().handle();
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
-      vkCmdBindIndexBuffer(cmd, gpu_scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
-      for (const scene::GpuScene::Draw* draw : draws) {
-        vkCmdDrawIndexed(cmd, draw->index_count, 1, draw->first_index, draw->vertex_offset,
-                         draw->instance);
-      }
-      vkCmdEndRendering(cmd);
-      ctx.barrier_within_pass("scratch");
+      push.origin = glm::ivec4(origin, 0);
+      // With stacked_surfaces = front the objects are drawn twice: first to find each voxel's
+      // front surfaces, then to accumulate what they leave visible.
+      if (front_pipeline_) draw_objects(ctx, *front_pipeline_, push, draws, edge);
+      draw_objects(ctx, *draw_pipeline_, push, draws, edge);
     }
 
     resolve_pipeline_->bind(cmd);
@@ -472,10 +497,10 @@ class VoxelizePass final : public graph::Pass {
     ctx.barrier_within_pass("scratch");
   }
 
-  std::optional<gpu::GraphicsPipeline> draw_pipeline_;
+  std::optional<gpu::GraphicsPipeline> draw_pipeline_, front_pipeline_;
   std::optional<gpu::ComputePipeline> resolve_pipeline_, clear_pipeline_;
   uint32_t resolution_ = 0, levels_ = 0, stride_ = kHdrWords;
-  bool rgba8_ = false, has_emission_ = false;
+  bool rgba8_ = false, has_emission_ = false, stacked_front_ = false;
   int64_t capacity_voxels_ = 0;
 
   bool initialized_ = false;
@@ -536,8 +561,9 @@ void register_voxelize(graph::Registry& registry) {
        draw_and_resolve,
        {},
        false,
-       "accumulation records (60 bytes per voxel with emission, 36 without, 12 for "
-       "average_rgba8); R^3 records voxelize a level in one go, fewer split it",
+       "accumulation records (64 bytes per voxel with emission, 36 without, 12 for "
+       "average_rgba8, 24 more with stacked_surfaces = front); R^3 records voxelize a level in "
+       "one go, fewer split it",
        true},
   };
   info.params = {
@@ -579,7 +605,19 @@ void register_voxelize(graph::Registry& registry) {
        {"accumulate_hdr", "average_rgba8"},
        "accumulate_hdr: deterministic fixed-point sums, HDR emission; average_rgba8: the "
        "source documents' compare-and-swap RGBA8 moving average (8-bit, count saturates at 255)",
-       false},
+       false,
+       true},
+      {"stacked_surfaces",
+       graph::ParamType::Enum,
+       0.0,
+       0.0,
+       1.0,
+       {"front", "average"},
+       "front: of the surfaces in a voxel that face the same way, only the frontmost object "
+       "(and what lies within 1/64 voxel of its plane) counts, so a lamp just under a ceiling "
+       "voxelizes as the lamp (objects are drawn twice); average: every surface counts alike",
+       false,
+       true},
       {"conservative",
        graph::ParamType::Enum,
        0.0,

@@ -54,8 +54,12 @@ void main() {
     float plane_offset = float(int(voxel_scratch[base + 8u])) * scale;
     normal = vec4(len2 > 1.0 ? n * inversesqrt(len2) : n, voxel_encode_plane_offset(plane_offset));
 #ifdef VOXEL_HAS_EMISSION
-    emission.rgb = vec3(voxel_read_fixed64(base + 9u), voxel_read_fixed64(base + 11u),
-                        voxel_read_fixed64(base + 13u)) / float(count);
+    // The uncovered part of an emitter's edge voxel emits nothing: divided by the sum of the
+    // coverage weights or 1, whichever is larger (voxel_accumulate.glsl).
+    float coverage = float(voxel_scratch[base + 9u]) / VOXEL_COVERAGE_SCALE;
+    emission.rgb = vec3(voxel_read_fixed64(base + 10u), voxel_read_fixed64(base + 12u),
+                        voxel_read_fixed64(base + 14u)) /
+                   max(coverage, 1.0);
 #endif
   }
 #endif

@@ -18,6 +18,11 @@
 #ifndef VOXEL_CONSERVATIVE
 #define VOXEL_CONSERVATIVE 1
 #endif
+// 0: every fragment accumulates; 1: the draw that records the front surfaces; 2: the draw that
+// accumulates what they leave visible.
+#ifndef VOXEL_FRONT
+#define VOXEL_FRONT 0
+#endif
 
 bool overlaps(ivec3 voxel) {
   vec3 p = vec3(voxel);
@@ -41,6 +46,44 @@ bool overlaps(ivec3 voxel) {
   return true;
 }
 
+// Sutherland-Hodgman step: the part of the convex polygon on the side of the line where
+// dot(line.xy, p) + line.z >= 0. A triangle clipped by four lines has at most 7 vertices.
+void clip_polygon(inout vec2 poly[8], inout int count, vec3 line) {
+  vec2 result[8];
+  int kept = 0;
+  for (int i = 0; i < count; ++i) {
+    vec2 a = poly[i], b = poly[(i + 1) % count];
+    float da = dot(line.xy, a) + line.z, db = dot(line.xy, b) + line.z;
+    if (da >= 0.0 && kept < 8) result[kept++] = a;
+    if ((da >= 0.0) != (db >= 0.0) && kept < 8) result[kept++] = mix(a, b, da / (da - db));
+  }
+  poly = result;
+  count = kept;
+}
+
+// The fraction of the voxel's cross-section along `axis` (its face, the unit square at the
+// anchored corner) that the triangle covers, seen along that axis, the dominant axis of its
+// normal. A column through the inside of a surface is covered whole, whatever the surface's
+// slope; one at its edge in part. The voxel's emission weighs each surface by it
+// (voxel_accumulate.glsl). In anchored coordinates, so that a scrolled window gives the same.
+float column_coverage(int axis, vec3 corner) {
+  int u = axis == 2 ? 0 : (axis == 0 ? 1 : 2);
+  int v = axis == 2 ? 1 : (axis == 0 ? 2 : 0);
+  vec2 poly[8];
+  for (int i = 0; i < 3; ++i) poly[i] = vec2(tri_anchored[i][u] - corner[u], tri_anchored[i][v] - corner[v]);
+  int count = 3;
+  clip_polygon(poly, count, vec3(1.0, 0.0, 0.0));
+  clip_polygon(poly, count, vec3(-1.0, 0.0, 1.0));
+  clip_polygon(poly, count, vec3(0.0, 1.0, 0.0));
+  clip_polygon(poly, count, vec3(0.0, -1.0, 1.0));
+  float twice_area = 0.0;
+  for (int i = 0; i < count; ++i) {
+    vec2 a = poly[i], b = poly[(i + 1) % count];
+    twice_area += a.x * b.y - a.y * b.x;
+  }
+  return clamp(0.5 * abs(twice_area), 0.0, 1.0);
+}
+
 void store(ivec3 voxel) {
   // Material at the voxel centre projected on the triangle, barycentrics clamped inside it.
   vec3 q = vec3(voxel) + 0.5 - tri_v0;
@@ -59,14 +102,30 @@ void store(ivec3 voxel) {
   scene_texture_lod = tri_plane.w;
   MaterialSample m = sample_material(scene_instances[instance].material, uv, normal, vec4(0.0));
   if (m.alpha_mask && m.base_color.a < m.alpha_cutoff) return;
-  vec3 albedo = m.base_color.rgb * (1.0 - m.metallic);  // the glTF BRDF's diffuse albedo
-  vec3 emission = sanitize_radiance(m.emissive);
-  vec3 n = safe_normalize(m.normal, tri_plane.xyz);
-
   ivec3 local = voxel - voxel_draw.box_min.xyz;
   ivec3 extent = voxel_draw.box_max.xyz - voxel_draw.box_min.xyz;
   uint index = uint((local.z * extent.y + local.y) * extent.x + local.x);
-  uint base = index * uint(voxel_draw.box_max.w);
+  uint stride = uint(voxel_draw.box_max.w);
+  uint base = index * stride;
+  // The face normal and the voxel's corner in anchored coordinates (see column_coverage).
+  vec3 face = normalize(cross(tri_anchored[1] - tri_anchored[0], tri_anchored[2] - tri_anchored[0]));
+  vec3 corner = vec3(voxel + voxel_draw.origin.xyz);
+#if VOXEL_FRONT != 0
+  // Stacked surfaces (voxel_accumulate.glsl): the first draw finds the frontmost opaque surface
+  // per facing, the second keeps only what that surface leaves visible.
+  float depth = dot(face, tri_anchored[0] - (corner + 0.5));
+  uint key = voxel_front_key(depth, instance);
+  uint front_word = base + stride - VOXEL_FRONT_WORDS + voxel_front_axis(face);
+#if VOXEL_FRONT == 1
+  if (!m.alpha_blend || m.base_color.a >= 1.0) atomicMax(voxel_scratch[front_word], key);
+  return;
+#else
+  if (!voxel_front_visible(key, voxel_scratch[front_word])) return;
+#endif
+#endif
+  vec3 albedo = m.base_color.rgb * (1.0 - m.metallic);  // the glTF BRDF's diffuse albedo
+  vec3 emission = sanitize_radiance(m.emissive);
+  vec3 n = safe_normalize(m.normal, tri_plane.xyz);
 #ifdef VOXEL_STRATEGY_RGBA8
   voxel_average_rgba8(base, albedo);
   voxel_average_rgba8(base + 1u, n * 0.5 + 0.5);
@@ -76,7 +135,14 @@ void store(ivec3 voxel) {
 #else
   // The triangle's plane relative to this voxel's centre, along the shading normal (voxels).
   float plane_offset = -dot(tri_plane.xyz, vec3(voxel) + 0.5 - tri_v0) * dot(n, tri_plane.xyz);
-  voxel_accumulate_hdr(base, albedo, m.base_color.a, n, plane_offset, emission);
+#ifdef VOXEL_HAS_EMISSION
+  vec3 a = abs(face);
+  int coverage_axis = (a.z >= a.x && a.z >= a.y) ? 2 : (a.x >= a.y ? 0 : 1);
+  float coverage = column_coverage(coverage_axis, corner);
+#else
+  float coverage = 1.0;  // weighs the emission only
+#endif
+  voxel_accumulate_hdr(base, coverage, albedo, m.base_color.a, n, plane_offset, emission);
 #endif
 }
 

@@ -24,6 +24,7 @@ layout(location = 0) in vec3 in_window[];
 layout(location = 1) in vec3 in_normal[];
 layout(location = 2) in vec2 in_uv[];
 layout(location = 3) flat in uint in_instance[];
+layout(location = 4) in vec3 in_anchored[];
 
 vec3 g_edges[9];
 
@@ -66,6 +67,9 @@ void emit_at(vec2 pixel) {
   tri_aabb_max = g_aabb_max;
   for (int i = 0; i < 9; ++i) tri_edges[i] = g_edges[i];
   tri_v0 = g_v0;
+  tri_anchored[0] = in_anchored[0];
+  tri_anchored[1] = in_anchored[1];
+  tri_anchored[2] = in_anchored[2];
   tri_bary1 = g_bary1;
   tri_bary2 = g_bary2;
   tri_normals[0] = in_normal[0];

@@ -12,6 +12,7 @@ layout(location = 0) out vec3 out_window;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec2 out_uv;
 layout(location = 3) flat out uint out_instance;
+layout(location = 4) out vec3 out_anchored;
 
 void main() {
   SceneInstance instance = scene_instances[gl_InstanceIndex];
@@ -20,6 +21,7 @@ void main() {
   vec3 relative =
       mat3(instance.world) * in_position + (instance.world[3].xyz - voxel_draw.anchor.xyz);
   out_window = (relative - voxel_draw.level_min_size.xyz) / voxel_draw.level_min_size.w;
+  out_anchored = relative / voxel_draw.level_min_size.w;
   out_normal = mat3(instance.normal_matrix) * in_normal;
   out_uv = in_uv;
   out_instance = uint(gl_InstanceIndex);

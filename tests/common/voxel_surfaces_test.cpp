@@ -1,0 +1,155 @@
+// What a voxel holds (docs/voxelization.md): emission weighted by the part of the voxel's
+// cross-section its surfaces cover, and stacked surfaces that face the same way showing only
+// the front one. Voxel edges are 1 m and the anchor is snapped to even metres, so integer
+// world coordinates are voxel faces.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "engine/scene/scene_builder.hpp"
+#include "tests/common/voxel_test_support.hpp"
+#include "tests/gpu/gpu_test_env.hpp"
+
+namespace voxgi::test {
+namespace {
+
+using VoxelSurfacesTest = GpuTest;
+
+const std::map<std::string, std::string> kOneMetreVoxels = {
+    {"voxel.resolution", "8"}, {"voxelize.voxel_size", "1"}, {"voxelize.center", "scene"}};
+
+scene::Material emitter(glm::vec3 albedo, glm::vec3 radiance) {
+  scene::Material m = diffuse(albedo);
+  m.double_sided = false;
+  m.emissive = radiance;
+  return m;
+}
+
+struct VoxelValue {
+  glm::vec4 albedo, normal, emission;
+};
+
+VoxelValue voxel_at(const VoxelVolumes& v, const glm::dvec3& world) {
+  const glm::ivec3 w = glm::ivec3(glm::floor(v.window_coord(0, world)));
+  const size_t t = v.texel(0, w);
+  return {v.albedo[t], v.normal[t], v.emission[t]};
+}
+
+// A ceiling (white, facing down) with a light fixture 5 cm under it (black, emitting, facing
+// down), both covering the voxels x, z in [2, 6) of the layer y in [4, 5); a floor far below
+// keeps the scene bounds symmetric.
+scene::Scene ceiling_with_fixture() {
+  scene::SceneBuilder b("fixture");
+  const int white = b.add_material(emitter({0.8f, 0.8f, 0.8f}, glm::vec3(0.0f)));
+  const int light = b.add_material(emitter({0.0f, 0.0f, 0.0f}, {10.0f, 5.0f, 2.0f}));
+  b.add_quad("ceiling", {2, 4.5f, 2}, {4, 0, 0}, {0, 0, 4}, white);
+  b.add_quad("fixture", {2, 4.45f, 2}, {4, 0, 0}, {0, 0, 4}, light);
+  b.add_quad("floor", {2, 1.5f, 2}, {0, 0, 4}, {4, 0, 0}, white);
+  return b.finish();
+}
+
+TEST_F(VoxelSurfacesTest, StackedSurfacesShowTheFrontOne) {
+  const scene::Scene scene = ceiling_with_fixture();
+  for (const char* mode : {"front", "average"}) {
+    std::map<std::string, std::string> params = kOneMetreVoxels;
+    params["voxelize.stacked_surfaces"] = mode;
+    std::vector<uint8_t> first;
+    for (int run_index = 0; run_index < 2; ++run_index) {
+      VoxelRun run(scene, params);
+      run.render(glm::vec3(4.0f));
+      const VoxelVolumes v = run.read();
+      const VoxelValue inside = voxel_at(v, {3.5, 4.5, 4.5});
+      std::printf("[%s] emission %.3f %.3f %.3f, albedo %.3f, normal y %.3f, opacity %.3f\n", mode,
+                  inside.emission.x, inside.emission.y, inside.emission.z, inside.albedo.x,
+                  inside.normal.y, inside.albedo.a);
+      ASSERT_GT(inside.normal.w, 0.5f) << "the fixture's voxel is empty";
+      const float share = std::string(mode) == "front" ? 1.0f : 0.5f;
+      EXPECT_NEAR(inside.emission.x, 10.0f * share, 0.02f) << mode;
+      EXPECT_NEAR(inside.emission.y, 5.0f * share, 0.01f) << mode;
+      EXPECT_NEAR(inside.emission.z, 2.0f * share, 0.005f) << mode;
+      EXPECT_NEAR(inside.albedo.x, 0.8f * (1.0f - share), 2.0f / 255.0f) << mode;
+      EXPECT_NEAR(inside.albedo.a, 1.0f, 1e-3f) << "hiding a surface must not open the voxel";
+      EXPECT_NEAR(inside.normal.y, -1.0f, 1e-3f);
+      // The floor faces up alone: untouched by the rule.
+      const VoxelValue floor = voxel_at(v, {3.5, 1.5, 4.5});
+      EXPECT_NEAR(floor.albedo.x, 0.8f, 2.0f / 255.0f) << mode;
+      // The keys are combined by atomicMax, so fragment order cannot change the result.
+      if (run_index == 0) {
+        first = v.emission_bytes;
+      } else {
+        EXPECT_TRUE(first == v.emission_bytes) << mode << ": emission differs between runs";
+      }
+    }
+  }
+}
+
+// Surfaces that face each other in one voxel (the two faces of a thin wall) both count, and so
+// do coplanar pieces of different objects (tiles meeting in a voxel).
+TEST_F(VoxelSurfacesTest, FacingAwayAndCoplanarSurfacesAreNotHidden) {
+  scene::SceneBuilder b("tiles");
+  const int red = b.add_material(emitter({0.8f, 0.0f, 0.0f}, {4.0f, 0.0f, 0.0f}));
+  const int blue = b.add_material(emitter({0.0f, 0.0f, 0.8f}, {0.0f, 0.0f, 4.0f}));
+  // Two tiles of a floor at y = 2.5 meeting at x = 4.5, inside voxel x in [4, 5).
+  b.add_quad("tile_a", {2, 2.5f, 2}, {0, 0, 4}, {2.5f, 0, 0}, red);
+  b.add_quad("tile_b", {4.5f, 2.5f, 2}, {0, 0, 4}, {1.5f, 0, 0}, blue);
+  // A thin wall: faces 2 cm apart at x = 3.49 (facing -x) and 3.51 (facing +x), above the floor.
+  b.add_quad("wall_west", {3.49f, 4, 2}, {0, 0, 4}, {0, 2, 0}, red);
+  b.add_quad("wall_east", {3.51f, 4, 2}, {0, 2, 0}, {0, 0, 4}, blue);
+  const scene::Scene scene = b.finish();
+  VoxelRun run(scene, kOneMetreVoxels);
+  run.render(glm::vec3(4.0f));
+  const VoxelVolumes v = run.read();
+
+  const VoxelValue seam = voxel_at(v, {4.5, 2.5, 3.5});
+  std::printf("tile seam: emission %.3f %.3f %.3f\n", seam.emission.x, seam.emission.y,
+              seam.emission.z);
+  EXPECT_NEAR(seam.emission.x, 2.0f, 0.01f) << "half the voxel is the red tile";
+  EXPECT_NEAR(seam.emission.z, 2.0f, 0.01f) << "half the voxel is the blue tile";
+
+  const VoxelValue wall = voxel_at(v, {3.5, 4.5, 3.5});
+  std::printf("thin wall: emission %.3f %.3f %.3f, normal length %.3f\n", wall.emission.x,
+              wall.emission.y, wall.emission.z, glm::length(glm::vec3(wall.normal)));
+  EXPECT_GT(wall.emission.x, 1.0f) << "the face towards -x was hidden";
+  EXPECT_GT(wall.emission.z, 1.0f) << "the face towards +x was hidden";
+}
+
+// A voxel an emitter covers in part emits that part of the emitter's light; its albedo,
+// opacity, normal and plane are those of the surface.
+TEST_F(VoxelSurfacesTest, EdgeVoxelsSendOutTheCoveredPart) {
+  scene::SceneBuilder b("edge");
+  const int lamp = b.add_material(emitter({0.6f, 0.6f, 0.6f}, {8.0f, 8.0f, 8.0f}));
+  // Facing up at y = 3.5, covering x in [2, 4.25), z in [2, 6): voxel x in [4, 5) a quarter.
+  b.add_quad("lamp", {2, 3.5f, 2}, {0, 0, 4}, {2.25f, 0, 0}, lamp);
+  // A triangle over voxel x, z in [5, 6) at y = 3.5 covering half of it.
+  std::vector<scene::Vertex> tri(3);
+  tri[0].position = {5, 3.5f, 5};
+  tri[1].position = {5, 3.5f, 6};
+  tri[2].position = {6, 3.5f, 5};
+  for (scene::Vertex& vertex : tri) vertex.normal = {0, 1, 0};
+  b.add_mesh("half", tri, {0, 1, 2}, lamp);
+  const scene::Scene scene = b.finish();
+  VoxelRun run(scene, kOneMetreVoxels);
+  run.render(glm::vec3(4.0f));
+  const VoxelVolumes v = run.read();
+
+  const VoxelValue inside = voxel_at(v, {3.5, 3.5, 3.5});
+  const VoxelValue quarter = voxel_at(v, {4.5, 3.5, 3.5});
+  const VoxelValue half = voxel_at(v, {5.5, 3.5, 5.5});
+  std::printf("inside %.3f, quarter %.3f, half triangle %.3f (emission); albedo %.3f %.3f %.3f\n",
+              inside.emission.x, quarter.emission.x, half.emission.x, inside.albedo.x,
+              quarter.albedo.x, half.albedo.x);
+  EXPECT_NEAR(inside.emission.x, 8.0f, 0.01f);
+  EXPECT_NEAR(quarter.emission.x, 2.0f, 0.01f);
+  EXPECT_NEAR(half.emission.x, 4.0f, 0.01f);
+  for (const VoxelValue& voxel : {inside, quarter, half}) {
+    EXPECT_NEAR(voxel.albedo.x, 0.6f, 2.0f / 255.0f) << "the albedo is not weighted";
+    EXPECT_NEAR(voxel.albedo.a, 1.0f, 1e-3f) << "coverage must not thin the voxel's opacity";
+    EXPECT_NEAR(voxel.normal.y, 1.0f, 1e-3f);
+  }
+}
+
+}  // namespace
+}  // namespace voxgi::test

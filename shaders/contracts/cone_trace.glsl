@@ -58,6 +58,9 @@
 #endif
 // Hard cap on the steps of one cone, so that no parameter combination can hang the GPU.
 #define VCT_MAX_STEPS 512
+// Most lanes of a capped cone (vct_trace_cone, VctTraceSettings.lanes): thin sub-cones across
+// its width.
+#define VCT_MAX_LANES 4
 // A cone stops once it is this opaque: the rest would add less than 1% of its radiance.
 #define VCT_OPACITY_THRESHOLD 0.99
 // Widest cone aperture (half angle 60 degrees): wider cones jump to the coarsest mips at once.
@@ -196,6 +199,7 @@ VctCone vct_cone_from_surface(vec3 origin, vec3 direction, float tan_half_angle,
 
 struct VctTraceSettings {
   float step_factor;     // beta: step length / cone diameter (0 < beta)
+  int lanes;             // lanes of a capped cone, 1..VCT_MAX_LANES (vct_trace_cone)
   float max_distance;    // metres along the cone
   float start_distance;  // metres skipped at the start (self-occlusion)
   float ao_falloff;      // lambda of f(r) = 1 / (1 + lambda r), r in level-0 voxel edges
@@ -225,17 +229,28 @@ struct VctConeResult {
 // The step follows the voxel actually sampled, so a capped cone takes shorter steps instead of
 // stepping over thin walls.
 VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
-  VctConeResult result;
-  result.radiance = vec3(0.0);
-  result.opacity = 0.0;
-  result.occlusion = 0.0;
   float tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
   float base_size = voxel_size(0);
   bool has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
   float rise = has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
+  vec3 side = has_receiver ? cross(cone.direction, cone.receiver_normal) : vec3(0.0);
+  float side_len = length(side);
+  side = side_len > 1e-3 ? side / side_len : vec3(0.0);
+  // The cone's lanes (see below): radiance, opacity and occlusion of each.
+  int lanes = clamp(s.lanes, 1, VCT_MAX_LANES);
+  vec3 lane_radiance[VCT_MAX_LANES];
+  float lane_opacity[VCT_MAX_LANES];
+  float lane_occlusion[VCT_MAX_LANES];
+  for (int j = 0; j < VCT_MAX_LANES; ++j) {
+    lane_radiance[j] = vec3(0.0);
+    lane_opacity[j] = 0.0;
+    lane_occlusion[j] = 0.0;
+  }
   float t = max(s.start_distance, 0.0);
   for (int i = 0; i < VCT_MAX_STEPS; ++i) {
-    if (result.opacity >= VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
+    float open = 0.0;  // the most transparent lane
+    for (int j = 0; j < lanes; ++j) open = max(open, 1.0 - lane_opacity[j]);
+    if (open <= 1.0 - VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
     vec3 p = cone.origin + t * cone.direction;
     int finest = voxel_finest_level(p, 1.0);
     if (finest < 0) break;  // left the volume
@@ -256,18 +271,44 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
       // so the cone still stops at them (skipping such samples let cones escape through them).
       p += cone.receiver_normal * (1.5 * coarse_voxel - height);
     }
-    // Interpolated optical depth over the step, and the opacity-weighted mean radiance.
-    vec4 v = vct_sample(p, cone.direction, lod);
-    float tau = max(v.a, 0.0);
+    // A capped cone's voxels are narrower than the cone: one sample on its axis would be a
+    // thin probe carrying the whole cone's weight, which hits or misses a small bright
+    // surface (an area light) and paints it as blotches that move with the cone layout (more
+    // cones were then worse than fewer). So the cone is a fan of `lanes` thin lanes spread
+    // evenly across its width along the receiver's tangent (where the receiver is not), each
+    // composited on its own, so that a lane stops at the wall it meets and the lanes beside it
+    // go on. Where the voxels are as wide as the cone the lanes coincide and share a sample; a
+    // lane outside the volume takes the axis's sample.
+    bool spread = lanes > 1 && side_len > 1e-3 && diameter > 1.5 * voxel;
     float ratio = step_length / voxel;
-    float corrected = 1.0 - exp(-tau * ratio);
-    vec3 scaled = max(v.rgb, vec3(0.0)) * VCT_MAX_OPTICAL_DEPTH;  // radiance x tau
-    vec3 colour = tau > 1e-6 ? scaled * (corrected / tau) : scaled * ratio;
-    result.radiance += (1.0 - result.opacity) * colour;
     float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * diameter / base_size);
-    result.occlusion += (1.0 - result.occlusion) * corrected * falloff;
-    result.opacity += (1.0 - result.opacity) * corrected;
+    vec4 shared_sample = spread ? vec4(0.0) : vct_sample(p, cone.direction, lod);
+    for (int j = 0; j < lanes; ++j) {
+      if (lane_opacity[j] >= VCT_OPACITY_THRESHOLD) continue;
+      vec4 v = shared_sample;
+      if (spread) {
+        vec3 q = p + side * (((float(j) + 0.5) / float(lanes) - 0.5) * diameter);
+        v = vct_sample(voxel_finest_level(q, 1.0) < 0 ? p : q, cone.direction, lod);
+      }
+      // Interpolated optical depth over the step, and the opacity-weighted mean radiance.
+      float tau = max(v.a, 0.0);
+      float corrected = 1.0 - exp(-tau * ratio);
+      vec3 scaled = max(v.rgb, vec3(0.0)) * VCT_MAX_OPTICAL_DEPTH;  // radiance x tau
+      vec3 colour = tau > 1e-6 ? scaled * (corrected / tau) : scaled * ratio;
+      lane_radiance[j] += (1.0 - lane_opacity[j]) * colour;
+      lane_occlusion[j] += (1.0 - lane_occlusion[j]) * corrected * falloff;
+      lane_opacity[j] += (1.0 - lane_opacity[j]) * corrected;
+    }
     t += step_length;
+  }
+  VctConeResult result;
+  result.radiance = vec3(0.0);
+  result.opacity = 0.0;
+  result.occlusion = 0.0;
+  for (int j = 0; j < lanes; ++j) {
+    result.radiance += lane_radiance[j] / float(lanes);
+    result.opacity += lane_opacity[j] / float(lanes);
+    result.occlusion += lane_occlusion[j] / float(lanes);
   }
   return result;
 }

@@ -134,6 +134,7 @@ void main() {
   s.max_distance = pc.max_distance;
   s.start_distance = pc.start_offset * voxel;
   s.ao_falloff = pc.ao_falloff;
+  s.lanes = VCT_MAX_LANES;
 #if HAS_SHADOW
   store_shadow(pixel, light_visibility(g.position, p, g.normal, voxel, s));
 #endif

@@ -37,6 +37,7 @@ void main() {
   s.max_distance = pc.max_distance;
   s.start_distance = pc.start_distance;
   s.ao_falloff = pc.ao_falloff;
+  s.lanes = 1;  // the library's cones as the source documents trace them
   if (pc.single_cone != 0) {
     // A free cone in a medium: no receiver surface.
     VctCone cone = vct_cone_from_surface(p, d, pc.tan_half_angle, vec3(0.0), 0.0);

@@ -228,6 +228,56 @@ struct VctConeResult {
 // the normal until it can.
 // The step follows the voxel actually sampled, so a capped cone takes shorter steps instead of
 // stepping over thin walls.
+// One lane: the cone's axis only. Kept apart from the lanes' loop, whose per-lane arrays cost
+// 2.3x as much on lavapipe even with one lane.
+VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
+  VctConeResult result;
+  result.radiance = vec3(0.0);
+  result.opacity = 0.0;
+  result.occlusion = 0.0;
+  float tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
+  float base_size = voxel_size(0);
+  bool has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
+  float rise = has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
+  float t = max(s.start_distance, 0.0);
+  for (int i = 0; i < VCT_MAX_STEPS; ++i) {
+    if (result.opacity >= VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
+    vec3 p = cone.origin + t * cone.direction;
+    int finest = voxel_finest_level(p, 1.0);
+    if (finest < 0) break;  // left the volume
+    float diameter = max(2.0 * t * tan_half, base_size);
+    float lod = log2(diameter / base_size);
+    float height = cone.receiver_height + t * rise;
+    if (has_receiver) lod = min(lod, log2(max(height, 1e-6 * base_size) / (3.0 * base_size)));
+    lod = min(lod, vct_window_lod_limit(p));
+    lod = clamp(lod, float(finest), vct_max_lod());
+    float voxel = base_size * exp2(lod);  // edge of the voxels actually sampled
+    // Each sample stands for the segment [t, t + step]; the last one ends at max_distance.
+    float step_length = max(s.step_factor * voxel, 1e-2 * base_size);
+    step_length = min(step_length, s.max_distance - t);
+    float coarse_voxel = base_size * exp2(ceil(lod));
+    if (has_receiver && coarse_voxel > (2.0 / 3.0) * height) {
+      // Too close to the plane for the finest level present: sample straight above, where the
+      // receiver's voxels no longer weigh in. Walls standing on the plane reach up there too,
+      // so the cone still stops at them (skipping such samples let cones escape through them).
+      p += cone.receiver_normal * (1.5 * coarse_voxel - height);
+    }
+    // Interpolated optical depth over the step, and the opacity-weighted mean radiance.
+    vec4 v = vct_sample(p, cone.direction, lod);
+    float tau = max(v.a, 0.0);
+    float ratio = step_length / voxel;
+    float corrected = 1.0 - exp(-tau * ratio);
+    vec3 scaled = max(v.rgb, vec3(0.0)) * VCT_MAX_OPTICAL_DEPTH;  // radiance x tau
+    vec3 colour = tau > 1e-6 ? scaled * (corrected / tau) : scaled * ratio;
+    result.radiance += (1.0 - result.opacity) * colour;
+    float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * diameter / base_size);
+    result.occlusion += (1.0 - result.occlusion) * corrected * falloff;
+    result.opacity += (1.0 - result.opacity) * corrected;
+    t += step_length;
+  }
+  return result;
+}
+
 VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
   float tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
   float base_size = voxel_size(0);
@@ -236,8 +286,9 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
   vec3 side = has_receiver ? cross(cone.direction, cone.receiver_normal) : vec3(0.0);
   float side_len = length(side);
   side = side_len > 1e-3 ? side / side_len : vec3(0.0);
-  // The cone's lanes (see below): radiance, opacity and occlusion of each.
   int lanes = clamp(s.lanes, 1, VCT_MAX_LANES);
+  if (lanes == 1) return vct_trace_cone_axis(cone, s);
+  // The cone's lanes (see below): radiance, opacity and occlusion of each.
   vec3 lane_radiance[VCT_MAX_LANES];
   float lane_opacity[VCT_MAX_LANES];
   float lane_occlusion[VCT_MAX_LANES];

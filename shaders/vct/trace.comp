@@ -65,6 +65,7 @@ layout(push_constant) uniform Push {
   float normal_offset;  // in voxels of the finest level containing the point
   float start_offset;   // in voxels
   float shadow_tan_half_angle;
+  int lanes;  // of a capped cone (contracts/cone_trace.glsl)
 } pc;
 
 void store(ivec2 pixel, vec3 result, float visibility) {
@@ -134,7 +135,7 @@ void main() {
   s.max_distance = pc.max_distance;
   s.start_distance = pc.start_offset * voxel;
   s.ao_falloff = pc.ao_falloff;
-  s.lanes = VCT_MAX_LANES;
+  s.lanes = pc.lanes;
 #if HAS_SHADOW
   store_shadow(pixel, light_visibility(g.position, p, g.normal, voxel, s));
 #endif

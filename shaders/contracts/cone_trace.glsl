@@ -228,6 +228,56 @@ struct VctConeResult {
 // the normal until it can.
 // The step follows the voxel actually sampled, so a capped cone takes shorter steps instead of
 // stepping over thin walls.
+// Where a cone samples at distance t and how far that sample reaches (see vct_trace_cone).
+struct VctConeStep {
+  vec3 p;             // sample point, lifted off the receiver's plane where needed
+  float diameter;     // the cone's width at t
+  float lod;          // level of detail sampled
+  float voxel;        // edge of the voxels sampled
+  float step_length;  // the segment [t, t + step_length] the sample stands for
+};
+
+// False once the cone has left the volume.
+bool vct_cone_step(VctCone cone, VctTraceSettings s, float t, out VctConeStep st) {
+  float tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
+  float base_size = voxel_size(0);
+  bool has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
+  float rise = has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
+  st.p = cone.origin + t * cone.direction;
+  int finest = voxel_finest_level(st.p, 1.0);
+  if (finest < 0) return false;
+  st.diameter = max(2.0 * t * tan_half, base_size);
+  float lod = log2(st.diameter / base_size);
+  float height = cone.receiver_height + t * rise;
+  if (has_receiver) lod = min(lod, log2(max(height, 1e-6 * base_size) / (3.0 * base_size)));
+  lod = min(lod, vct_window_lod_limit(st.p));
+  st.lod = clamp(lod, float(finest), vct_max_lod());
+  st.voxel = base_size * exp2(st.lod);
+  // Each sample stands for the segment [t, t + step]; the last one ends at max_distance.
+  st.step_length = min(max(s.step_factor * st.voxel, 1e-2 * base_size), s.max_distance - t);
+  float coarse_voxel = base_size * exp2(ceil(st.lod));
+  if (has_receiver && coarse_voxel > (2.0 / 3.0) * height) {
+    // Too close to the plane for the finest level present: sample straight above, where the
+    // receiver's voxels no longer weigh in. Walls standing on the plane reach up there too,
+    // so the cone still stops at them (skipping such samples let cones escape through them).
+    st.p += cone.receiver_normal * (1.5 * coarse_voxel - height);
+  }
+  return true;
+}
+
+// Front-to-back compositing of one sample (stored form) over a step of `ratio` voxel lengths.
+void vct_composite(vec4 v, float ratio, float falloff, inout vec3 radiance, inout float opacity,
+                   inout float occlusion) {
+  // Interpolated optical depth over the step, and the opacity-weighted mean radiance.
+  float tau = max(v.a, 0.0);
+  float corrected = 1.0 - exp(-tau * ratio);
+  vec3 scaled = max(v.rgb, vec3(0.0)) * VCT_MAX_OPTICAL_DEPTH;  // radiance x tau
+  vec3 colour = tau > 1e-6 ? scaled * (corrected / tau) : scaled * ratio;
+  radiance += (1.0 - opacity) * colour;
+  occlusion += (1.0 - occlusion) * corrected * falloff;
+  opacity += (1.0 - opacity) * corrected;
+}
+
 // One lane: the cone's axis only. Kept apart from the lanes' loop, whose per-lane arrays cost
 // 2.3x as much on lavapipe even with one lane.
 VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
@@ -235,59 +285,29 @@ VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
   result.radiance = vec3(0.0);
   result.opacity = 0.0;
   result.occlusion = 0.0;
-  float tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
   float base_size = voxel_size(0);
-  bool has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
-  float rise = has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
   float t = max(s.start_distance, 0.0);
   for (int i = 0; i < VCT_MAX_STEPS; ++i) {
     if (result.opacity >= VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
-    vec3 p = cone.origin + t * cone.direction;
-    int finest = voxel_finest_level(p, 1.0);
-    if (finest < 0) break;  // left the volume
-    float diameter = max(2.0 * t * tan_half, base_size);
-    float lod = log2(diameter / base_size);
-    float height = cone.receiver_height + t * rise;
-    if (has_receiver) lod = min(lod, log2(max(height, 1e-6 * base_size) / (3.0 * base_size)));
-    lod = min(lod, vct_window_lod_limit(p));
-    lod = clamp(lod, float(finest), vct_max_lod());
-    float voxel = base_size * exp2(lod);  // edge of the voxels actually sampled
-    // Each sample stands for the segment [t, t + step]; the last one ends at max_distance.
-    float step_length = max(s.step_factor * voxel, 1e-2 * base_size);
-    step_length = min(step_length, s.max_distance - t);
-    float coarse_voxel = base_size * exp2(ceil(lod));
-    if (has_receiver && coarse_voxel > (2.0 / 3.0) * height) {
-      // Too close to the plane for the finest level present: sample straight above, where the
-      // receiver's voxels no longer weigh in. Walls standing on the plane reach up there too,
-      // so the cone still stops at them (skipping such samples let cones escape through them).
-      p += cone.receiver_normal * (1.5 * coarse_voxel - height);
-    }
-    // Interpolated optical depth over the step, and the opacity-weighted mean radiance.
-    vec4 v = vct_sample(p, cone.direction, lod);
-    float tau = max(v.a, 0.0);
-    float ratio = step_length / voxel;
-    float corrected = 1.0 - exp(-tau * ratio);
-    vec3 scaled = max(v.rgb, vec3(0.0)) * VCT_MAX_OPTICAL_DEPTH;  // radiance x tau
-    vec3 colour = tau > 1e-6 ? scaled * (corrected / tau) : scaled * ratio;
-    result.radiance += (1.0 - result.opacity) * colour;
-    float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * diameter / base_size);
-    result.occlusion += (1.0 - result.occlusion) * corrected * falloff;
-    result.opacity += (1.0 - result.opacity) * corrected;
-    t += step_length;
+    VctConeStep st;
+    if (!vct_cone_step(cone, s, t, st)) break;  // left the volume
+    vec4 v = vct_sample(st.p, cone.direction, st.lod);
+    float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * st.diameter / base_size);
+    vct_composite(v, st.step_length / st.voxel, falloff, result.radiance, result.opacity,
+                  result.occlusion);
+    t += st.step_length;
   }
   return result;
 }
 
 VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
-  float tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
+  int lanes = clamp(s.lanes, 1, VCT_MAX_LANES);
+  if (lanes == 1) return vct_trace_cone_axis(cone, s);
   float base_size = voxel_size(0);
   bool has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
-  float rise = has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
   vec3 side = has_receiver ? cross(cone.direction, cone.receiver_normal) : vec3(0.0);
   float side_len = length(side);
   side = side_len > 1e-3 ? side / side_len : vec3(0.0);
-  int lanes = clamp(s.lanes, 1, VCT_MAX_LANES);
-  if (lanes == 1) return vct_trace_cone_axis(cone, s);
   // The cone's lanes (see below): radiance, opacity and occlusion of each.
   vec3 lane_radiance[VCT_MAX_LANES];
   float lane_opacity[VCT_MAX_LANES];
@@ -302,26 +322,8 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     float open = 0.0;  // the most transparent lane
     for (int j = 0; j < lanes; ++j) open = max(open, 1.0 - lane_opacity[j]);
     if (open <= 1.0 - VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
-    vec3 p = cone.origin + t * cone.direction;
-    int finest = voxel_finest_level(p, 1.0);
-    if (finest < 0) break;  // left the volume
-    float diameter = max(2.0 * t * tan_half, base_size);
-    float lod = log2(diameter / base_size);
-    float height = cone.receiver_height + t * rise;
-    if (has_receiver) lod = min(lod, log2(max(height, 1e-6 * base_size) / (3.0 * base_size)));
-    lod = min(lod, vct_window_lod_limit(p));
-    lod = clamp(lod, float(finest), vct_max_lod());
-    float voxel = base_size * exp2(lod);  // edge of the voxels actually sampled
-    // Each sample stands for the segment [t, t + step]; the last one ends at max_distance.
-    float step_length = max(s.step_factor * voxel, 1e-2 * base_size);
-    step_length = min(step_length, s.max_distance - t);
-    float coarse_voxel = base_size * exp2(ceil(lod));
-    if (has_receiver && coarse_voxel > (2.0 / 3.0) * height) {
-      // Too close to the plane for the finest level present: sample straight above, where the
-      // receiver's voxels no longer weigh in. Walls standing on the plane reach up there too,
-      // so the cone still stops at them (skipping such samples let cones escape through them).
-      p += cone.receiver_normal * (1.5 * coarse_voxel - height);
-    }
+    VctConeStep st;
+    if (!vct_cone_step(cone, s, t, st)) break;  // left the volume
     // A capped cone's voxels are narrower than the cone: one sample on its axis would be a
     // thin probe carrying the whole cone's weight, which hits or misses a small bright
     // surface (an area light) and paints it as blotches that move with the cone layout (more
@@ -330,27 +332,20 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     // composited on its own, so that a lane stops at the wall it meets and the lanes beside it
     // go on. Where the voxels are as wide as the cone the lanes coincide and share a sample; a
     // lane outside the volume takes the axis's sample.
-    bool spread = lanes > 1 && side_len > 1e-3 && diameter > 1.5 * voxel;
-    float ratio = step_length / voxel;
-    float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * diameter / base_size);
-    vec4 shared_sample = spread ? vec4(0.0) : vct_sample(p, cone.direction, lod);
+    bool spread = side_len > 1e-3 && st.diameter > 1.5 * st.voxel;
+    float ratio = st.step_length / st.voxel;
+    float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * st.diameter / base_size);
+    vec4 shared_sample = spread ? vec4(0.0) : vct_sample(st.p, cone.direction, st.lod);
     for (int j = 0; j < lanes; ++j) {
       if (lane_opacity[j] >= VCT_OPACITY_THRESHOLD) continue;
       vec4 v = shared_sample;
       if (spread) {
-        vec3 q = p + side * (((float(j) + 0.5) / float(lanes) - 0.5) * diameter);
-        v = vct_sample(voxel_finest_level(q, 1.0) < 0 ? p : q, cone.direction, lod);
+        vec3 q = st.p + side * (((float(j) + 0.5) / float(lanes) - 0.5) * st.diameter);
+        v = vct_sample(voxel_finest_level(q, 1.0) < 0 ? st.p : q, cone.direction, st.lod);
       }
-      // Interpolated optical depth over the step, and the opacity-weighted mean radiance.
-      float tau = max(v.a, 0.0);
-      float corrected = 1.0 - exp(-tau * ratio);
-      vec3 scaled = max(v.rgb, vec3(0.0)) * VCT_MAX_OPTICAL_DEPTH;  // radiance x tau
-      vec3 colour = tau > 1e-6 ? scaled * (corrected / tau) : scaled * ratio;
-      lane_radiance[j] += (1.0 - lane_opacity[j]) * colour;
-      lane_occlusion[j] += (1.0 - lane_occlusion[j]) * corrected * falloff;
-      lane_opacity[j] += (1.0 - lane_opacity[j]) * corrected;
+      vct_composite(v, ratio, falloff, lane_radiance[j], lane_opacity[j], lane_occlusion[j]);
     }
-    t += step_length;
+    t += st.step_length;
   }
   VctConeResult result;
   result.radiance = vec3(0.0);

@@ -154,7 +154,6 @@ class VoxelizePass final : public graph::Pass {
     const std::string where = "pass '" + ctx.pass_name() + "' (common.voxelize): ";
     has_emission_ = ctx.has("emission");
     rgba8_ = ctx.choice("strategy") == "average_rgba8";
-    stacked_front_ = ctx.choice("stacked_surfaces") == "front";
     stride_ = scratch_words_per_voxel(ctx);
     capacity_voxels_ =
         static_cast<int64_t>(ctx.info("scratch").buffer_size / (VkDeviceSize(stride_) * 4));
@@ -184,7 +183,8 @@ class VoxelizePass final : public graph::Pass {
     desc.vertex = graph::compile_pass_shader(ctx, "common/voxelize.vert", defines);
     desc.geometry = graph::compile_pass_shader(ctx, "common/voxelize.geom", defines);
     std::vector<gpu::ShaderDefine> accumulate_defines = defines;
-    if (stacked_front_) accumulate_defines.push_back({"VOXEL_FRONT", "2"});
+    const bool stacked_front = ctx.choice("stacked_surfaces") == "front";
+    if (stacked_front) accumulate_defines.push_back({"VOXEL_FRONT", "2"});
     desc.fragment = graph::compile_pass_shader(ctx, "common/voxelize.frag", accumulate_defines);
     desc.layout.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_FRAGMENT_BIT}};
     desc.layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};
@@ -199,7 +199,7 @@ class VoxelizePass final : public graph::Pass {
     desc.conservative_rasterization = conservative == 2;
     draw_pipeline_.emplace(ctx.gpu(), desc);
     front_pipeline_.reset();
-    if (stacked_front_) {
+    if (stacked_front) {
       std::vector<gpu::ShaderDefine> front_defines = defines;
       front_defines.push_back({"VOXEL_FRONT", "1"});
       desc.name = ctx.pass_name() + " (front surfaces)";
@@ -500,7 +500,7 @@ class VoxelizePass final : public graph::Pass {
   std::optional<gpu::GraphicsPipeline> draw_pipeline_, front_pipeline_;
   std::optional<gpu::ComputePipeline> resolve_pipeline_, clear_pipeline_;
   uint32_t resolution_ = 0, levels_ = 0, stride_ = kHdrWords;
-  bool rgba8_ = false, has_emission_ = false, stacked_front_ = false;
+  bool rgba8_ = false, has_emission_ = false;
   int64_t capacity_voxels_ = 0;
 
   bool initialized_ = false;

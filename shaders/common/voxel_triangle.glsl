@@ -23,6 +23,7 @@ layout(location = 20) flat VOXEL_TRIANGLE_QUALIFIER vec2 tri_uv2;
 layout(location = 21) flat VOXEL_TRIANGLE_QUALIFIER uvec2 tri_instance_axis;  // instance, dominant axis
 // The vertices in anchored coordinates (voxel_draw.glsl), for coverage and front-surface keys.
 layout(location = 22) flat VOXEL_TRIANGLE_QUALIFIER vec3 tri_anchored[3];
+layout(location = 25) flat VOXEL_TRIANGLE_QUALIFIER vec3 tri_anchored_normal;  // unit face normal
 
 // Tolerance of the overlap test in voxels: covers float rounding of window coordinates up to a
 // few hundred voxels; it adds voxels that touch the triangle within this distance.

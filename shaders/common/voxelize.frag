@@ -108,7 +108,7 @@ void store(ivec3 voxel) {
   uint stride = uint(voxel_draw.box_max.w);
   uint base = index * stride;
   // The face normal and the voxel's corner in anchored coordinates (see column_coverage).
-  vec3 face = normalize(cross(tri_anchored[1] - tri_anchored[0], tri_anchored[2] - tri_anchored[0]));
+  vec3 face = tri_anchored_normal;
   vec3 corner = vec3(voxel + voxel_draw.origin.xyz);
 #if VOXEL_FRONT != 0
   // Stacked surfaces (voxel_accumulate.glsl): the first draw finds the frontmost opaque surface

@@ -57,7 +57,7 @@ vec2 project(vec3 window, int axis) {
 // Outputs are undefined after EmitVertex(), so every vertex writes the flat data again.
 vec4 g_plane;
 vec2 g_plane_d;
-vec3 g_aabb_min, g_aabb_max, g_v0, g_bary1, g_bary2;
+vec3 g_aabb_min, g_aabb_max, g_v0, g_bary1, g_bary2, g_anchored_normal;
 uvec2 g_instance_axis;
 
 void emit_at(vec2 pixel) {
@@ -70,6 +70,7 @@ void emit_at(vec2 pixel) {
   tri_anchored[0] = in_anchored[0];
   tri_anchored[1] = in_anchored[1];
   tri_anchored[2] = in_anchored[2];
+  tri_anchored_normal = g_anchored_normal;
   tri_bary1 = g_bary1;
   tri_bary2 = g_bary2;
   tri_normals[0] = in_normal[0];
@@ -118,6 +119,8 @@ void main() {
   write_edges(3, rel, 1, 2, unit.x < 0.0 ? -1.0 : 1.0);
   write_edges(6, rel, 2, 0, unit.y < 0.0 ? -1.0 : 1.0);
   g_v0 = w0;
+  g_anchored_normal =
+      normalize(cross(in_anchored[1] - in_anchored[0], in_anchored[2] - in_anchored[0]));
   // Barycentrics of a point q on the plane: b1 = dot(q - v0, bary1), b2 = dot(q - v0, bary2).
   float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
   g_bary1 = (d11 * e1 - d01 * e2) / n_len2;

@@ -228,6 +228,23 @@ struct VctConeResult {
 // the normal until it can.
 // The step follows the voxel actually sampled, so a capped cone takes shorter steps instead of
 // stepping over thin walls.
+// What every step of a cone needs, worked out once per cone.
+struct VctConeFrame {
+  float tan_half;     // clamped aperture
+  float base_size;    // level-0 voxel edge
+  bool has_receiver;  // the cone leaves a surface
+  float rise;         // height gained over the receiver per unit of t
+};
+
+VctConeFrame vct_cone_frame(VctCone cone) {
+  VctConeFrame f;
+  f.tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
+  f.base_size = voxel_size(0);
+  f.has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
+  f.rise = f.has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
+  return f;
+}
+
 // Where a cone samples at distance t and how far that sample reaches (see vct_trace_cone).
 struct VctConeStep {
   vec3 p;             // sample point, lifted off the receiver's plane where needed
@@ -238,17 +255,16 @@ struct VctConeStep {
 };
 
 // False once the cone has left the volume.
-bool vct_cone_step(VctCone cone, VctTraceSettings s, float t, out VctConeStep st) {
-  float tan_half = clamp(cone.tan_half_angle, 1e-3, VCT_MAX_TAN_HALF_ANGLE);
-  float base_size = voxel_size(0);
-  bool has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
-  float rise = has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
+bool vct_cone_step(VctCone cone, VctConeFrame f, VctTraceSettings s, float t,
+                   out VctConeStep st) {
+  float base_size = f.base_size;
+  bool has_receiver = f.has_receiver;
   st.p = cone.origin + t * cone.direction;
   int finest = voxel_finest_level(st.p, 1.0);
   if (finest < 0) return false;
-  st.diameter = max(2.0 * t * tan_half, base_size);
+  st.diameter = max(2.0 * t * f.tan_half, base_size);
   float lod = log2(st.diameter / base_size);
-  float height = cone.receiver_height + t * rise;
+  float height = cone.receiver_height + t * f.rise;
   if (has_receiver) lod = min(lod, log2(max(height, 1e-6 * base_size) / (3.0 * base_size)));
   lod = min(lod, vct_window_lod_limit(st.p));
   st.lod = clamp(lod, float(finest), vct_max_lod());
@@ -285,12 +301,13 @@ VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
   result.radiance = vec3(0.0);
   result.opacity = 0.0;
   result.occlusion = 0.0;
-  float base_size = voxel_size(0);
+  VctConeFrame frame = vct_cone_frame(cone);
+  float base_size = frame.base_size;
   float t = max(s.start_distance, 0.0);
   for (int i = 0; i < VCT_MAX_STEPS; ++i) {
     if (result.opacity >= VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
     VctConeStep st;
-    if (!vct_cone_step(cone, s, t, st)) break;  // left the volume
+    if (!vct_cone_step(cone, frame, s, t, st)) break;  // left the volume
     vec4 v = vct_sample(st.p, cone.direction, st.lod);
     float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * st.diameter / base_size);
     vct_composite(v, st.step_length / st.voxel, falloff, result.radiance, result.opacity,
@@ -303,9 +320,9 @@ VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
 VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
   int lanes = clamp(s.lanes, 1, VCT_MAX_LANES);
   if (lanes == 1) return vct_trace_cone_axis(cone, s);
-  float base_size = voxel_size(0);
-  bool has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
-  vec3 side = has_receiver ? cross(cone.direction, cone.receiver_normal) : vec3(0.0);
+  VctConeFrame frame = vct_cone_frame(cone);
+  float base_size = frame.base_size;
+  vec3 side = frame.has_receiver ? cross(cone.direction, cone.receiver_normal) : vec3(0.0);
   float side_len = length(side);
   side = side_len > 1e-3 ? side / side_len : vec3(0.0);
   // The cone's lanes (see below): radiance, opacity and occlusion of each.
@@ -323,7 +340,7 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     for (int j = 0; j < lanes; ++j) open = max(open, 1.0 - lane_opacity[j]);
     if (open <= 1.0 - VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
     VctConeStep st;
-    if (!vct_cone_step(cone, s, t, st)) break;  // left the volume
+    if (!vct_cone_step(cone, frame, s, t, st)) break;  // left the volume
     // A capped cone's voxels are narrower than the cone: one sample on its axis would be a
     // thin probe carrying the whole cone's weight, which hits or misses a small bright
     // surface (an area light) and paints it as blotches that move with the cone layout (more

@@ -242,8 +242,8 @@ IndirectComparison compare_lit_box(const VoxelGiSetup& gi, const BoxRadiosity& r
 // the same-bounce reference.
 inline constexpr double kAnalyticTolerance = 0.10;
 // The receiver over the lit square is held to 30% for now (measured, vct and dvs at 32^3 and
-// 64^3 with their default 6 cones: 0.86 to 1.22 of the closed form for vct). Most light comes through
-// the cones that pass the square's edge, and a cone grazing an edge gathers it through its
+// 64^3 with their default 6 cones: 0.86 to 1.22 of the closed form for vct). Most light comes
+// through the cones that pass the square's edge, and a cone grazing an edge gathers it through its
 // footprint at several samples (docs/vct.md, "What is left"). The target is
 // kAnalyticTolerance.
 inline constexpr double kLitSquareTolerance = 0.30;

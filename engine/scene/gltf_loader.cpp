@@ -22,6 +22,24 @@ namespace voxgi::scene {
 namespace {
 
 constexpr int kModeTriangles = 4;
+constexpr int kModeTriangleStrip = 5;
+constexpr int kModeTriangleFan = 6;
+
+// Triangle list of a strip or fan (glTF 2.0, 3.7.2.1: strip triangle i is
+// {p_i, p_(i+1+i%2), p_(i+2-i%2)}, fan triangle i is {p_(i+1), p_(i+2), p_0}).
+std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& indices, int mode) {
+  std::vector<uint32_t> list;
+  if (indices.size() < 3) return list;
+  list.reserve((indices.size() - 2) * 3);
+  for (size_t i = 0; i + 2 < indices.size(); ++i) {
+    if (mode == kModeTriangleStrip) {
+      list.insert(list.end(), {indices[i], indices[i + 1 + i % 2], indices[i + 2 - i % 2]});
+    } else {
+      list.insert(list.end(), {indices[i + 1], indices[i + 2], indices[0]});
+    }
+  }
+  return list;
+}
 
 // Decodes embedded and external images with stb_image, keeping bit depth and channel count.
 // Unlike tinygltf's default loader, an image that does not decode is a warning, not a
@@ -205,6 +223,7 @@ class Loader {
     load_nodes();
     load_materials();
     load_meshes();
+    expand_gpu_instancing();
     load_lights_and_cameras();
     load_animations();
     scene_.update_transforms();
@@ -329,8 +348,9 @@ class Loader {
   }
 
   void check_extensions() {
-    static const std::set<std::string> supported = {"KHR_materials_emissive_strength",
-                                                    "KHR_lights_punctual"};
+    static const std::set<std::string> supported = {
+        "EXT_mesh_gpu_instancing", "KHR_materials_emissive_strength", "KHR_lights_punctual",
+        "KHR_mesh_quantization", "KHR_texture_transform"};
     std::vector<std::string> required, used;
     for (const std::string& ext : model_.extensionsRequired) {
       if (!supported.count(ext)) required.push_back(ext);
@@ -587,15 +607,11 @@ class Loader {
 
   // Scene texture index for glTF texture `index` used as sRGB or linear; -1 when the image is
   // missing or did not decode (with a warning).
-  int texture(int index, bool srgb, int tex_coord, const std::string& field) {
+  int texture(int index, bool srgb, const std::string& field) {
     if (index < 0) return -1;
     check_index(index, model_.textures.size(), field + ".index", "texture");
     const auto key = std::make_pair(index, srgb);
     if (auto it = texture_cache_.find(key); it != texture_cache_.end()) return it->second;
-    if (tex_coord != 0) {
-      warn(field + ".texCoord: only TEXCOORD_0 is supported, using it instead of TEXCOORD_" +
-           std::to_string(tex_coord));
-    }
     const tinygltf::Texture& src = model_.textures[size_t(index)];
     const std::string tex_field = "textures[" + std::to_string(index) + "]";
     int result = -1;
@@ -670,6 +686,55 @@ class Loader {
     return value.IsNumber() || value.IsInt() ? float(value.GetNumberAsDouble()) : fallback;
   }
 
+  // The texture coordinates a material slot samples: its texCoord, then KHR_texture_transform
+  // (whose own texCoord overrides the slot's). Sets beyond TEXCOORD_1 fall back to TEXCOORD_0.
+  template <typename TextureInfo>
+  TextureMapping mapping(const TextureInfo& info, const std::string& field) {
+    TextureMapping m;
+    if (info.index < 0) return m;
+    int tex_coord = info.texCoord;
+    const auto ext = info.extensions.find("KHR_texture_transform");
+    if (ext != info.extensions.end()) {
+      const std::string ext_field = field + ".extensions.KHR_texture_transform";
+      const tinygltf::Value& t = ext->second;
+      const auto number = [&](const tinygltf::Value& v, const std::string& key) {
+        if (!(v.IsNumber() || v.IsInt()) || !std::isfinite(v.GetNumberAsDouble())) {
+          fail(ext_field + "." + key, "expected a finite number");
+        }
+        return float(v.GetNumberAsDouble());
+      };
+      const auto pair = [&](const char* key, glm::vec2 fallback) {
+        if (!t.Has(key)) return fallback;
+        const tinygltf::Value& v = t.Get(key);
+        if (!v.IsArray() || v.ArrayLen() != 2) fail(ext_field + "." + key, "expected 2 numbers");
+        return glm::vec2(number(v.Get(0), std::string(key) + "[0]"),
+                         number(v.Get(1), std::string(key) + "[1]"));
+      };
+      m.offset = pair("offset", m.offset);
+      m.scale = pair("scale", m.scale);
+      if (t.Has("rotation")) m.rotation = number(t.Get("rotation"), "rotation");
+      if (t.Has("texCoord")) {
+        const tinygltf::Value& v = t.Get("texCoord");
+        if (!v.IsInt() || v.GetNumberAsInt() < 0) {
+          fail(ext_field + ".texCoord", "expected an integer >= 0");
+        }
+        tex_coord = v.GetNumberAsInt();
+      }
+    }
+    for (const auto& [name, value] : info.extensions) {
+      if (name != "KHR_texture_transform") {
+        warn(field + ".extensions." + name + ": not supported, ignored");
+      }
+    }
+    if (tex_coord > 1) {
+      warn(field + ".texCoord: TEXCOORD_" + std::to_string(tex_coord) +
+           " is not supported (TEXCOORD_0 and TEXCOORD_1 are), TEXCOORD_0 used instead");
+      tex_coord = 0;
+    }
+    m.tex_coord = tex_coord;
+    return m;
+  }
+
   void load_materials() {
     for (size_t i = 0; i < model_.materials.size(); ++i) {
       const tinygltf::Material& src = model_.materials[i];
@@ -706,17 +771,18 @@ class Loader {
         fail(field + ".alphaMode", "expected OPAQUE, MASK or BLEND, got \"" + src.alphaMode + "\"");
       }
       m.double_sided = src.doubleSided;
-      m.base_color_tex = texture(pbr.baseColorTexture.index, true, pbr.baseColorTexture.texCoord,
-                                 field + ".pbrMetallicRoughness.baseColorTexture");
-      m.metallic_roughness_tex =
-          texture(pbr.metallicRoughnessTexture.index, false, pbr.metallicRoughnessTexture.texCoord,
-                  field + ".pbrMetallicRoughness.metallicRoughnessTexture");
-      m.normal_tex = texture(src.normalTexture.index, false, src.normalTexture.texCoord,
-                             field + ".normalTexture");
-      m.occlusion_tex = texture(src.occlusionTexture.index, false, src.occlusionTexture.texCoord,
-                                field + ".occlusionTexture");
-      m.emissive_tex = texture(src.emissiveTexture.index, true, src.emissiveTexture.texCoord,
-                               field + ".emissiveTexture");
+      const std::string base = field + ".pbrMetallicRoughness.baseColorTexture";
+      const std::string mr = field + ".pbrMetallicRoughness.metallicRoughnessTexture";
+      m.base_color_tex = texture(pbr.baseColorTexture.index, true, base);
+      m.metallic_roughness_tex = texture(pbr.metallicRoughnessTexture.index, false, mr);
+      m.normal_tex = texture(src.normalTexture.index, false, field + ".normalTexture");
+      m.occlusion_tex = texture(src.occlusionTexture.index, false, field + ".occlusionTexture");
+      m.emissive_tex = texture(src.emissiveTexture.index, true, field + ".emissiveTexture");
+      m.mappings[0] = mapping(pbr.baseColorTexture, base);
+      m.mappings[1] = mapping(pbr.metallicRoughnessTexture, mr);
+      m.mappings[2] = mapping(src.normalTexture, field + ".normalTexture");
+      m.mappings[3] = mapping(src.occlusionTexture, field + ".occlusionTexture");
+      m.mappings[4] = mapping(src.emissiveTexture, field + ".emissiveTexture");
       for (const auto& [name, value] : src.extensions) {
         if (name != "KHR_materials_emissive_strength") {
           warn(field + ".extensions." + name + ": not supported, ignored");
@@ -744,12 +810,15 @@ class Loader {
   }
 
   bool load_primitive(const tinygltf::Primitive& src, const std::string& field, Primitive& out) {
-    if (src.mode != kModeTriangles && src.mode != -1) {
-      warn(field + ".mode: only TRIANGLES (4) is supported, primitive with mode " +
-           std::to_string(src.mode) + " skipped");
+    const bool triangles = src.mode == kModeTriangles || src.mode == -1;
+    if (!triangles && src.mode != kModeTriangleStrip && src.mode != kModeTriangleFan) {
+      warn(field + ".mode: points and lines (mode " + std::to_string(src.mode) +
+           ") have no surface to draw; primitive skipped");
       return false;
     }
-    if (!src.targets.empty()) warn(field + ".targets: morph targets not supported, ignored");
+    if (!src.targets.empty()) {
+      warn(field + ".targets: morph targets are not supported; drawn in the rest pose");
+    }
     const auto attribute = [&](const char* name) {
       const auto it = src.attributes.find(name);
       return it == src.attributes.end() ? -1 : it->second;
@@ -774,13 +843,15 @@ class Loader {
     }
     if (bad_position) warn(attr + "POSITION: non-finite positions replaced by the origin");
 
-    if (const int uv = attribute("TEXCOORD_0"); uv >= 0) {
-      const auto uvs = read_accessor(uv, attr + "TEXCOORD_0", {TINYGLTF_TYPE_VEC2});
-      check_count(uvs.size(), out.vertices.size(), attr + "TEXCOORD_0");
-      for (size_t i = 0; i < uvs.size(); ++i) {
-        const glm::vec2 t(uvs[i]);
-        out.vertices[i].uv = std::isfinite(t.x) && std::isfinite(t.y) ? t : glm::vec2(0.0f);
-      }
+    read_uvs(attribute("TEXCOORD_0"), attr + "TEXCOORD_0", out, &Vertex::uv);
+    if (const int uv1 = attribute("TEXCOORD_1"); uv1 >= 0) {
+      read_uvs(uv1, attr + "TEXCOORD_1", out, &Vertex::uv1);
+    } else {
+      // A material may name set 1 on a primitive that has none: it reads set 0 instead.
+      for (Vertex& v : out.vertices) v.uv1 = v.uv;
+    }
+    if (const int color = attribute("COLOR_0"); color >= 0) {
+      read_colors(color, attr + "COLOR_0", out);
     }
     if (src.indices >= 0) {
       out.indices = read_indices(src.indices, field + ".indices", out.vertices.size());
@@ -788,6 +859,7 @@ class Loader {
       out.indices.resize(out.vertices.size());
       for (size_t i = 0; i < out.indices.size(); ++i) out.indices[i] = uint32_t(i);
     }
+    if (!triangles) out.indices = triangle_list(out.indices, src.mode);
     if (out.indices.size() % 3 != 0) {
       warn(field + ".indices: count " + std::to_string(out.indices.size()) +
            " is not a multiple of 3; trailing indices dropped");
@@ -820,10 +892,120 @@ class Loader {
     return true;
   }
 
+  void read_uvs(int accessor, const std::string& field, Primitive& out, glm::vec2 Vertex::*set) {
+    if (accessor < 0) return;
+    const auto uvs = read_accessor(accessor, field, {TINYGLTF_TYPE_VEC2});
+    check_count(uvs.size(), out.vertices.size(), field);
+    for (size_t i = 0; i < uvs.size(); ++i) {
+      const glm::vec2 t(uvs[i]);
+      out.vertices[i].*set = std::isfinite(t.x) && std::isfinite(t.y) ? t : glm::vec2(0.0f);
+    }
+  }
+
+  // COLOR_0: RGB or RGBA, float or normalized unsigned byte/short (glTF 2.0, 3.7.2.1).
+  void read_colors(int accessor, const std::string& field, Primitive& out) {
+    auto colors = read_accessor(accessor, field, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4});
+    check_count(colors.size(), out.vertices.size(), field);
+    const tinygltf::Accessor& a = model_.accessors[size_t(accessor)];
+    const bool rgb = a.type == TINYGLTF_TYPE_VEC3;
+    float scale = 1.0f;
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized) {
+      if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+        scale = 1.0f / 255.0f;
+      } else if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+        scale = 1.0f / 65535.0f;
+      } else {
+        fail(field, "componentType " + std::to_string(a.componentType) +
+                        " is not allowed for COLOR_0 (float, unsigned byte or unsigned short)");
+      }
+      warn(field + ": integer colours must be normalized; read as normalized");
+    }
+    bool clamped = false;
+    for (size_t i = 0; i < colors.size(); ++i) {
+      glm::vec4 c = colors[i] * scale;
+      if (rgb) c.w = 1.0f;
+      for (int k = 0; k < 4; ++k) {
+        // Colours are factors of the base colour: [0, 1] like it.
+        const float v = std::isfinite(c[k]) ? glm::clamp(c[k], 0.0f, 1.0f) : 1.0f;
+        clamped |= v != c[k];
+        c[k] = v;
+      }
+      out.vertices[i].color = c;
+    }
+    if (clamped) warn(field + ": colours outside [0, 1] (or not finite) clamped");
+  }
+
   void check_count(size_t got, size_t expected, const std::string& field) const {
     if (got != expected) {
       fail(field,
            "has " + std::to_string(got) + " elements, POSITION has " + std::to_string(expected));
+    }
+  }
+
+  // EXT_mesh_gpu_instancing: a node draws its mesh once per element of its TRANSLATION,
+  // ROTATION and SCALE accessors, each placed by those under the node. Each instance becomes a
+  // child node (appended after the file's nodes, so every index the file uses stays valid).
+  void expand_gpu_instancing() {
+    constexpr size_t kMaxInstances = size_t{1} << 20;
+    const size_t file_nodes = model_.nodes.size();
+    for (size_t i = 0; i < file_nodes; ++i) {
+      const auto ext = model_.nodes[i].extensions.find("EXT_mesh_gpu_instancing");
+      if (ext == model_.nodes[i].extensions.end()) continue;
+      const std::string field =
+          "nodes[" + std::to_string(i) + "].extensions.EXT_mesh_gpu_instancing";
+      if (!ext->second.Has("attributes") || !ext->second.Get("attributes").IsObject()) {
+        fail(field + ".attributes", "expected an object of accessors");
+      }
+      const tinygltf::Value& attributes = ext->second.Get("attributes");
+      std::vector<glm::vec4> trs[3];
+      const char* names[3] = {"TRANSLATION", "ROTATION", "SCALE"};
+      size_t count = 0;
+      bool any = false;
+      for (int k = 0; k < 3; ++k) {
+        if (!attributes.Has(names[k])) continue;
+        const tinygltf::Value& index = attributes.Get(names[k]);
+        const std::string attr = field + ".attributes." + names[k];
+        if (!index.IsInt()) fail(attr, "expected an accessor index");
+        trs[k] = read_accessor(index.GetNumberAsInt(), attr,
+                               {k == 1 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3});
+        if (any && trs[k].size() != count) {
+          fail(attr, "has " + std::to_string(trs[k].size()) + " elements, the other attributes " +
+                         std::to_string(count));
+        }
+        count = trs[k].size();
+        any = true;
+      }
+      if (count > kMaxInstances) {
+        fail(field,
+             std::to_string(count) + " instances (at most " + std::to_string(kMaxInstances) + ")");
+      }
+      if (scene_.nodes[i].mesh < 0 || !any) continue;
+      const int mesh = scene_.nodes[i].mesh;
+      scene_.nodes[i].mesh = -1;  // drawn by its instances only
+      for (size_t n = 0; n < count; ++n) {
+        Node instance;
+        instance.name = scene_.nodes[i].name + "#" + std::to_string(n);
+        instance.parent = int(i);
+        instance.mesh = mesh;
+        if (!trs[0].empty()) instance.translation = glm::vec3(trs[0][n]);
+        if (!trs[1].empty()) {
+          const glm::vec4 q = trs[1][n];  // x, y, z, w
+          instance.rotation = glm::normalize(glm::quat(q.w, q.x, q.y, q.z));
+        }
+        if (!trs[2].empty()) instance.scale = glm::vec3(trs[2][n]);
+        const glm::mat4 local = instance.local();
+        bool finite = true;
+        for (int c = 0; c < 4; ++c) {
+          for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(local[c][r]);
+        }
+        if (!finite) {
+          warn(field + ": instance " + std::to_string(n) + " has a non-finite transform; skipped");
+          continue;
+        }
+        scene_.nodes[i].children.push_back(int(scene_.nodes.size()));
+        scene_.nodes.push_back(std::move(instance));
+        visible_.push_back(visible_[i]);
+      }
     }
   }
 

@@ -107,7 +107,7 @@ void GpuBvh::upload(const Scene& scene, const Bvh& bvh) {
                                         ? glm::transpose(glm::inverse(linear))
                                         : glm::mat3(1.0f);
     GpuBvhShading s{};
-    glm::vec2 uv[3];
+    glm::vec2 uv[3], uv1[3];
     for (uint32_t k = 0; k < 3; ++k) {
       const uint32_t index = primitive.indices[t.index * 3 + k];
       const Vertex vertex =
@@ -116,9 +116,13 @@ void GpuBvh::upload(const Scene& scene, const Bvh& bvh) {
       const float handedness = instance.mirrored ? -vertex.tangent.w : vertex.tangent.w;
       s.tangent[k] = glm::vec4(linear * glm::vec3(vertex.tangent), handedness);
       uv[k] = vertex.uv;
+      uv1[k] = vertex.uv1;
+      s.color[k] = vertex.color;
     }
     s.uv01 = glm::vec4(uv[0], uv[1]);
     s.uv2 = uv[2];
+    s.uv1_01 = glm::vec4(uv1[0], uv1[1]);
+    s.uv1_2 = glm::vec4(uv1[2], 0.0f, 0.0f);
     s.material = material_index(scene, primitive);
     s.emitter_pdf_area = table.pdf_area[i];
     shading.push_back(s);

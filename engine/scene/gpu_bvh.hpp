@@ -46,8 +46,11 @@ struct GpuBvhShading {
   // Probability density per unit area with which light sampling picks a point of this
   // triangle (selection probability / area); 0 when it is not an emitter.
   float emitter_pdf_area;
+  glm::vec4 uv1_01;    // TEXCOORD_1 of vertex 0 (xy) and 1 (zw)
+  glm::vec4 uv1_2;     // xy: TEXCOORD_1 of vertex 2; zw unused
+  glm::vec4 color[3];  // COLOR_0 (linear RGBA) per vertex
 };
-static_assert(sizeof(GpuBvhShading) == 128);
+static_assert(sizeof(GpuBvhShading) == 208);
 
 // Emissive triangles, picked in proportion to emitted power (area × max emissive component).
 struct GpuEmitter {

@@ -86,6 +86,12 @@ GpuMaterial to_gpu_material(const Material& m) {
   g.emissive_tex = m.emissive_tex;
   g.alpha_mode = static_cast<uint32_t>(m.alpha_mode);
   g.double_sided = m.double_sided ? 1u : 0u;
+  for (int slot = 0; slot < 5; ++slot) {
+    glm::vec3 row0, row1;
+    m.mappings[slot].matrix_rows(row0, row1);
+    g.uv_rows[2 * slot] = glm::vec4(row0, float(m.mappings[slot].tex_coord));
+    g.uv_rows[2 * slot + 1] = glm::vec4(row1, 0.0f);
+  }
   return g;
 }
 
@@ -522,6 +528,8 @@ std::vector<VkVertexInputAttributeDescription> GpuScene::vertex_attributes() {
       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, uint32_t(offsetof(Vertex, normal))},
       {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, uint32_t(offsetof(Vertex, tangent))},
       {3, 0, VK_FORMAT_R32G32_SFLOAT, uint32_t(offsetof(Vertex, uv))},
+      {4, 0, VK_FORMAT_R32G32_SFLOAT, uint32_t(offsetof(Vertex, uv1))},
+      {5, 0, VK_FORMAT_R32G32B32A32_SFLOAT, uint32_t(offsetof(Vertex, color))},
   };
 }
 

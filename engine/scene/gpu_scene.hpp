@@ -48,8 +48,11 @@ struct GpuMaterial {
   // Bit per texture slot (0 base colour, 1 metallic-roughness, 2 normal, 3 occlusion,
   // 4 emissive): clamp-to-edge instead of repeat.
   uint32_t clamp_mask;
+  // Per slot two rows of its texture-coordinate transform (TextureMapping::matrix_rows); the
+  // first row's w is the TEXCOORD set (0 or 1).
+  glm::vec4 uv_rows[10];
 };
-static_assert(sizeof(GpuMaterial) == 80);
+static_assert(sizeof(GpuMaterial) == 240);
 
 inline constexpr uint32_t kInstanceMirrored = 1;  // GpuInstance::flags: det(world) < 0
 

@@ -16,6 +16,21 @@ glm::mat4 Node::local() const {
          glm::scale(glm::mat4(1.0f), scale);
 }
 
+void TextureMapping::matrix_rows(glm::vec3& row0, glm::vec3& row1) const {
+  // KHR_texture_transform: translation * rotation * scale, with its rotation matrix
+  // (cos, sin; -sin, cos).
+  const float c = std::cos(rotation), s = std::sin(rotation);
+  row0 = glm::vec3(c * scale.x, s * scale.y, offset.x);
+  row1 = glm::vec3(-s * scale.x, c * scale.y, offset.y);
+}
+
+glm::vec2 TextureMapping::apply(glm::vec2 uv) const {
+  glm::vec3 row0, row1;
+  matrix_rows(row0, row1);
+  const glm::vec3 p(uv, 1.0f);
+  return {glm::dot(row0, p), glm::dot(row1, p)};
+}
+
 void Scene::update_transforms() {
   // Iterative from the roots so deep hierarchies cannot overflow the stack; the loader has
   // already rejected cycles.

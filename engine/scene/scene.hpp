@@ -27,9 +27,11 @@ struct Vertex {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 1.0f, 0.0f};
   glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz, w = bitangent handedness (±1)
-  glm::vec2 uv{0.0f};
+  glm::vec2 uv{0.0f};                         // TEXCOORD_0
+  glm::vec2 uv1{0.0f};                        // TEXCOORD_1 (glTF lets any texture pick either set)
+  glm::vec4 color{1.0f};                      // COLOR_0, linear RGBA; multiplies the base colour
 };
-static_assert(sizeof(Vertex) == 48);
+static_assert(sizeof(Vertex) == 72);
 
 struct Primitive {
   std::vector<Vertex> vertices;
@@ -57,6 +59,19 @@ struct Texture {
 
 enum class AlphaMode { Opaque, Mask, Blend };
 
+// How one material slot maps a surface point to texture coordinates: the TEXCOORD set, then
+// KHR_texture_transform's offset, rotation and scale (uv' = T * R * S * uv).
+struct TextureMapping {
+  int tex_coord = 0;  // 0 or 1
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians, counter-clockwise in uv space
+  glm::vec2 scale{1.0f};
+
+  // Rows of the 2×3 matrix: uv' = (dot(row0, (u, v, 1)), dot(row1, (u, v, 1))).
+  void matrix_rows(glm::vec3& row0, glm::vec3& row1) const;
+  glm::vec2 apply(glm::vec2 uv) const;
+};
+
 struct Material {
   std::string name;
   glm::vec4 base_color{1.0f};
@@ -74,6 +89,8 @@ struct Material {
   int normal_tex = -1;
   int occlusion_tex = -1;
   int emissive_tex = -1;
+  // Per slot, in the order above (base colour, metallic-roughness, normal, occlusion, emissive).
+  TextureMapping mappings[5];
 };
 
 enum class LightType { Directional, Point, Spot };

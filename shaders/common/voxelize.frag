@@ -92,7 +92,13 @@ void store(ivec3 voxel) {
   vec3 bary = max(vec3(1.0 - b1 - b2, b1, b2), vec3(0.0));
   float sum = bary.x + bary.y + bary.z;
   bary = sum > 1e-6 ? bary / sum : vec3(1.0 / 3.0);
-  vec2 uv = tri_uv01.xy * bary.x + tri_uv01.zw * bary.y + tri_uv2 * bary.z;
+  SurfaceAttributes attributes;
+  attributes.uv0 = tri_uv01.xy * bary.x + tri_uv01.zw * bary.y + tri_uv2.xy * bary.z;
+  attributes.uv1 = tri_uv1_01.xy * bary.x + tri_uv1_01.zw * bary.y + tri_uv2.zw * bary.z;
+  vec4 c0 = vec4(unpackHalf2x16(tri_colors01.x), unpackHalf2x16(tri_colors01.y));
+  vec4 c1 = vec4(unpackHalf2x16(tri_colors01.z), unpackHalf2x16(tri_colors01.w));
+  vec4 c2 = vec4(unpackHalf2x16(tri_color2.x), unpackHalf2x16(tri_color2.y));
+  attributes.color = c0 * bary.x + c1 * bary.y + c2 * bary.z;
   vec3 interpolated =
       tri_normals[0] * bary.x + tri_normals[1] * bary.y + tri_normals[2] * bary.z;
   // Zero or cancelling vertex normals fall back to the face normal (window axes are world axes).
@@ -100,7 +106,7 @@ void store(ivec3 voxel) {
 
   uint instance = tri_instance_axis.x;
   scene_texture_lod = tri_plane.w;
-  MaterialSample m = sample_material(scene_instances[instance].material, uv, normal, vec4(0.0));
+  MaterialSample m = sample_material(scene_instances[instance].material, attributes, normal, vec4(0.0));
   if (m.alpha_mask && m.base_color.a < m.alpha_cutoff) return;
   ivec3 local = voxel - voxel_draw.box_min.xyz;
   ivec3 extent = voxel_draw.box_max.xyz - voxel_draw.box_min.xyz;

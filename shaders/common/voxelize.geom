@@ -25,6 +25,8 @@ layout(location = 1) in vec3 in_normal[];
 layout(location = 2) in vec2 in_uv[];
 layout(location = 3) flat in uint in_instance[];
 layout(location = 4) in vec3 in_anchored[];
+layout(location = 5) in vec2 in_uv1[];
+layout(location = 6) in vec4 in_color[];
 
 vec3 g_edges[9];
 
@@ -77,7 +79,11 @@ void emit_at(vec2 pixel) {
   tri_normals[1] = in_normal[1];
   tri_normals[2] = in_normal[2];
   tri_uv01 = vec4(in_uv[0], in_uv[1]);
-  tri_uv2 = in_uv[2];
+  tri_uv2 = vec4(in_uv[2], in_uv1[2]);
+  tri_uv1_01 = vec4(in_uv1[0], in_uv1[1]);
+  tri_colors01 = uvec4(packHalf2x16(in_color[0].rg), packHalf2x16(in_color[0].ba),
+                       packHalf2x16(in_color[1].rg), packHalf2x16(in_color[1].ba));
+  tri_color2 = uvec2(packHalf2x16(in_color[2].rg), packHalf2x16(in_color[2].ba));
   tri_instance_axis = g_instance_axis;
   float size = float(voxel_draw.box_min.w);
   gl_Position = vec4(pixel / size * 2.0 - 1.0, 0.5, 1.0);

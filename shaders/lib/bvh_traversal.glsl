@@ -41,6 +41,9 @@ struct BvhShading {
   vec2 uv2;
   uint material;
   float emitter_pdf_area;  // light-sampling density per unit area; 0: not an emitter
+  vec4 uv1_01;    // TEXCOORD_1 of vertex 0 (xy) and 1 (zw)
+  vec4 uv1_2;     // xy: TEXCOORD_1 of vertex 2
+  vec4 color[3];  // COLOR_0 per vertex
 };
 
 struct BvhEmitter {

@@ -25,6 +25,15 @@ struct SceneMaterial {
   uint alpha_mode;  // SCENE_ALPHA_*
   uint double_sided;
   uint clamp_mask;  // bit per slot (base, metallic-roughness, normal, occlusion, emissive)
+  // Per slot two rows of its texture-coordinate transform; uv_rows[2 * slot].w is its TEXCOORD set.
+  vec4 uv_rows[10];
+};
+
+// What a surface point's vertices give material sampling besides the normal and tangent.
+struct SurfaceAttributes {
+  vec2 uv0;    // TEXCOORD_0
+  vec2 uv1;    // TEXCOORD_1 (the loader copies set 0 where a mesh has no set 1)
+  vec4 color;  // COLOR_0, linear RGBA; (1, 1, 1, 1) without one
 };
 
 const uint SCENE_ALPHA_OPAQUE = 0u;
@@ -107,9 +116,14 @@ struct MaterialSample {
   bool double_sided;
 };
 
-// The sampler repeats; clamp-to-edge textures (glTF CLAMP_TO_EDGE) are clamped here.
-vec2 scene_texture_uv(vec2 uv, uint clamp_mask, uint slot) {
-  return (clamp_mask & (1u << slot)) != 0u ? clamp(uv, 0.0, 1.0) : uv;
+// The coordinates slot `slot` samples at: its TEXCOORD set through its transform
+// (KHR_texture_transform). The sampler repeats; clamp-to-edge textures (glTF CLAMP_TO_EDGE) are
+// clamped here.
+vec2 scene_texture_uv(SceneMaterial m, uint slot, SurfaceAttributes a) {
+  vec4 row0 = m.uv_rows[2u * slot];
+  vec3 uv = vec3(row0.w > 0.5 ? a.uv1 : a.uv0, 1.0);
+  vec2 mapped = vec2(dot(row0.xyz, uv), dot(m.uv_rows[2u * slot + 1u].xyz, uv));
+  return (m.clamp_mask & (1u << slot)) != 0u ? clamp(mapped, 0.0, 1.0) : mapped;
 }
 
 vec4 scene_texture_srgb(int layer, vec2 uv) {
@@ -128,19 +142,23 @@ vec4 scene_texture_linear(int layer, vec2 uv) {
 #endif
 }
 
+// Base colour and alpha: factor × texture × vertex colour (glTF 2.0, 3.9.2).
+vec4 scene_base_color(SceneMaterial m, SurfaceAttributes a) {
+  vec4 color = m.base_color * a.color;
+  if (m.base_color_tex >= 0) color *= scene_texture_srgb(m.base_color_tex, scene_texture_uv(m, 0u, a));
+  return color;
+}
+
 // normal and tangent are world-space interpolated vertex values (any length);
 // tangent.w is the bitangent sign.
-MaterialSample sample_material(uint material, vec2 uv, vec3 normal, vec4 tangent) {
+MaterialSample sample_material(uint material, SurfaceAttributes a, vec3 normal, vec4 tangent) {
   SceneMaterial m = scene_materials[material];
   MaterialSample s;
-  s.base_color = m.base_color;
-  if (m.base_color_tex >= 0) {
-    s.base_color *= scene_texture_srgb(m.base_color_tex, scene_texture_uv(uv, m.clamp_mask, 0u));
-  }
+  s.base_color = scene_base_color(m, a);
   s.metallic = m.metallic;
   s.roughness = m.roughness;
   if (m.metallic_roughness_tex >= 0) {
-    vec4 mr = scene_texture_linear(m.metallic_roughness_tex, scene_texture_uv(uv, m.clamp_mask, 1u));
+    vec4 mr = scene_texture_linear(m.metallic_roughness_tex, scene_texture_uv(m, 1u, a));
     s.roughness *= mr.g;  // glTF: roughness in green, metallic in blue
     s.metallic *= mr.b;
   }
@@ -157,7 +175,7 @@ MaterialSample sample_material(uint material, vec2 uv, vec3 normal, vec4 tangent
     if (t_len2 > 1e-20) {
       t *= inversesqrt(t_len2);
       vec3 b = cross(n, t) * (tangent.w < 0.0 ? -1.0 : 1.0);
-      vec3 tn = scene_texture_linear(m.normal_tex, scene_texture_uv(uv, m.clamp_mask, 2u)).xyz * 2.0 - 1.0;
+      vec3 tn = scene_texture_linear(m.normal_tex, scene_texture_uv(m, 2u, a)).xyz * 2.0 - 1.0;
       tn.xy *= m.normal_scale;
       vec3 mapped = t * tn.x + b * tn.y + n * tn.z;
       float mapped_len2 = dot(mapped, mapped);
@@ -169,12 +187,12 @@ MaterialSample sample_material(uint material, vec2 uv, vec3 normal, vec4 tangent
 
   s.occlusion = 1.0;
   if (m.occlusion_tex >= 0) {
-    float ao = scene_texture_linear(m.occlusion_tex, scene_texture_uv(uv, m.clamp_mask, 3u)).r;
+    float ao = scene_texture_linear(m.occlusion_tex, scene_texture_uv(m, 3u, a)).r;
     s.occlusion = 1.0 + m.occlusion_strength * (ao - 1.0);
   }
   s.emissive = m.emissive;
   if (m.emissive_tex >= 0) {
-    s.emissive *= scene_texture_srgb(m.emissive_tex, scene_texture_uv(uv, m.clamp_mask, 4u)).rgb;
+    s.emissive *= scene_texture_srgb(m.emissive_tex, scene_texture_uv(m, 4u, a)).rgb;
   }
   s.alpha_mask = m.alpha_mode == SCENE_ALPHA_MASK;
   s.alpha_blend = m.alpha_mode == SCENE_ALPHA_BLEND;

@@ -73,18 +73,21 @@ layout(push_constant) uniform Push {
 
 vec2 interpolate2(vec2 a, vec2 b, vec2 c, float u, float v) { return a * (1.0 - u - v) + b * u + c * v; }
 
+SurfaceAttributes surface_attributes(BvhShading s, float u, float v) {
+  SurfaceAttributes a;
+  a.uv0 = interpolate2(s.uv01.xy, s.uv01.zw, s.uv2, u, v);
+  a.uv1 = interpolate2(s.uv1_01.xy, s.uv1_01.zw, s.uv1_2.xy, u, v);
+  a.color = s.color[0] * (1.0 - u - v) + s.color[1] * u + s.color[2] * v;
+  return a;
+}
+
 float material_alpha(uint triangle, float u, float v, out uint alpha_mode, out float cutoff) {
   BvhShading s = bvh_shading[triangle];
   SceneMaterial m = scene_materials[s.material];
   alpha_mode = m.alpha_mode;
   cutoff = m.alpha_cutoff;
   if (m.alpha_mode == SCENE_ALPHA_OPAQUE) return 1.0;
-  float alpha = m.base_color.a;
-  if (m.base_color_tex >= 0) {
-    vec2 uv = interpolate2(s.uv01.xy, s.uv01.zw, s.uv2, u, v);
-    alpha *= scene_texture_srgb(m.base_color_tex, scene_texture_uv(uv, m.clamp_mask, 0u)).a;
-  }
-  return alpha;
+  return scene_base_color(m, surface_attributes(s, u, v)).a;
 }
 
 #if HAS_ALPHA
@@ -118,8 +121,7 @@ Hit shade_hit(BvhHit h, vec3 ray_o, vec3 ray_d) {
   hit.geometric = dot(ng, ray_d) > 0.0 ? -ng : ng;
   vec3 n = s.normal[0].xyz * w + s.normal[1].xyz * h.u + s.normal[2].xyz * h.v;
   vec4 t = s.tangent[0] * w + s.tangent[1] * h.u + s.tangent[2] * h.v;
-  vec2 uv = interpolate2(s.uv01.xy, s.uv01.zw, s.uv2, h.u, h.v);
-  hit.material = sample_material(s.material, uv, n, t);
+  hit.material = sample_material(s.material, surface_attributes(s, h.u, h.v), n, t);
   vec3 ns = hit.material.normal;
   hit.shading = dot(ns, hit.geometric) < 0.0 ? -ns : ns;
   hit.emitter_pdf_area = s.emitter_pdf_area;
@@ -269,8 +271,7 @@ vec3 next_event(Hit hit, Bsdf b, vec3 v, inout uint rng, out vec3 from_emitters)
       if (cos_light > 1e-6 && dot(n, l) > 0.0 && dot(hit.geometric, l) > 0.0 && pdf_light > 0.0) {
         BvhShading s = bvh_shading[triangle];
         float w = 1.0 - bu - bv;
-        vec2 uv = interpolate2(s.uv01.xy, s.uv01.zw, s.uv2, bu, bv);
-        MaterialSample m = sample_material(s.material, uv, s.normal[0].xyz * w + s.normal[1].xyz * bu + s.normal[2].xyz * bv,
+        MaterialSample m = sample_material(s.material, surface_attributes(s, bu, bv), s.normal[0].xyz * w + s.normal[1].xyz * bu + s.normal[2].xyz * bv,
                                            s.tangent[0] * w + s.tangent[1] * bu + s.tangent[2] * bv);
         vec3 f = bsdf_eval_cos(b, n, v, l) * emitted(m);
         if (max3(f) > 0.0) {

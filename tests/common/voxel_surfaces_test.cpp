@@ -151,5 +151,55 @@ TEST_F(VoxelSurfacesTest, EdgeVoxelsSendOutTheCoveredPart) {
   }
 }
 
+// The voxels take the base colour as glTF defines it: factor × texture (on the TEXCOORD set and
+// through the transform the material names) × vertex colour.
+TEST_F(VoxelSurfacesTest, VertexColoursUvSetsAndTextureTransformsReachTheVoxels) {
+  scene::SceneBuilder b("attributes");
+  scene::Texture halves;  // left half sRGB 188 (linear 0.5), right half white; wide for the mips
+  halves.name = "halves";
+  halves.width = 64;
+  halves.height = 1;
+  halves.srgb = true;
+  for (uint32_t x = 0; x < halves.width; ++x) {
+    const uint8_t value = x < halves.width / 2 ? 188 : 255;
+    halves.pixels.insert(halves.pixels.end(), {value, value, value, 255});
+  }
+  const int texture = b.add_texture(halves);
+  scene::Material on_set0 = diffuse({0.8f, 0.8f, 0.8f});
+  on_set0.base_color_tex = texture;
+  scene::Material on_set1 = on_set0;  // set 1 at u = 0.25, shifted by 0.5: the white half
+  on_set1.mappings[0].tex_coord = 1;
+  on_set1.mappings[0].offset = glm::vec2(0.5f, 0.0f);
+  const int materials[2] = {b.add_material(on_set0), b.add_material(on_set1)};
+  for (int i = 0; i < 2; ++i) {
+    // Floors facing up at y = 2.5 over x in [2, 4) and [4, 6), z in [2, 6).
+    std::vector<scene::Vertex> quad(4);
+    const glm::vec3 corners[4] = {{0, 0, 0}, {0, 0, 4}, {2, 0, 4}, {2, 0, 0}};
+    for (int k = 0; k < 4; ++k) {
+      quad[size_t(k)].position = glm::vec3(2.0f + 2.0f * float(i), 2.5f, 2.0f) + corners[k];
+      quad[size_t(k)].normal = {0, 1, 0};
+      quad[size_t(k)].uv = {0.25f, 0.5f};
+      quad[size_t(k)].uv1 = {0.25f, 0.5f};
+      quad[size_t(k)].color = {1.0f, 0.5f, 0.25f, 1.0f};
+    }
+    b.add_mesh("floor" + std::to_string(i), quad, {0, 1, 2, 0, 2, 3}, materials[i]);
+  }
+  const scene::Scene scene = b.finish();
+  VoxelRun run(scene, kOneMetreVoxels);
+  run.render(glm::vec3(4.0f));
+  const VoxelVolumes v = run.read();
+  const VoxelValue grey = voxel_at(v, {2.5, 2.5, 3.5});
+  const VoxelValue white = voxel_at(v, {5.5, 2.5, 3.5});
+  std::printf("set 0: albedo %.3f %.3f %.3f; set 1: %.3f %.3f %.3f\n", grey.albedo.x, grey.albedo.y,
+              grey.albedo.z, white.albedo.x, white.albedo.y, white.albedo.z);
+  const float tolerance = 3.0f / 255.0f;
+  EXPECT_NEAR(grey.albedo.x, 0.8f * 0.5029f * 1.0f, tolerance);
+  EXPECT_NEAR(grey.albedo.y, 0.8f * 0.5029f * 0.5f, tolerance);
+  EXPECT_NEAR(grey.albedo.z, 0.8f * 0.5029f * 0.25f, tolerance);
+  EXPECT_NEAR(white.albedo.x, 0.8f * 1.0f, tolerance);
+  EXPECT_NEAR(white.albedo.y, 0.8f * 0.5f, tolerance);
+  EXPECT_NEAR(white.albedo.z, 0.8f * 0.25f, tolerance);
+}
+
 }  // namespace
 }  // namespace voxgi::test

@@ -205,14 +205,86 @@ TEST_F(GltfLoader, TexturesExpandToRgbaAndSplitByColourSpace) {
   EXPECT_TRUE(scene.features().has_textures);
 }
 
+// COLOR_0 in the forms glTF allows (RGB or RGBA; float, normalized unsigned byte or short),
+// TEXCOORD_1, and KHR_texture_transform with its own texCoord.
+TEST_F(GltfLoader, VertexColoursSecondUvSetAndTextureTransforms) {
+  std::vector<uint8_t> white(4, 255);
+  ASSERT_NE(stbi_write_png((dir_ / "white.png").c_str(), 2, 2, 1, white.data(), 2), 0);
+  GltfWriter w;
+  json rgb_bytes = w.triangle();
+  rgb_bytes["attributes"]["COLOR_0"] = w.add_accessor(
+      std::vector<uint8_t>{255, 0, 0, 0, 0, 255, 0, 0, 0, 0, 255, 0}, 5121, "VEC3", 3, true);
+  // Unsigned-byte VEC3 elements are padded to 4 bytes: the writer's view needs a stride.
+  w.doc["bufferViews"].back()["byteStride"] = 4;
+  rgb_bytes["attributes"]["TEXCOORD_1"] = w.add_floats({0.5f, 0.25f, 1, 1, 0, 0}, "VEC2", 2);
+  rgb_bytes["material"] = 0;
+  w.add_mesh_node(rgb_bytes);
+  json rgba_shorts = w.triangle();
+  rgba_shorts["attributes"]["COLOR_0"] = w.add_accessor(
+      std::vector<uint16_t>{65535, 32768, 0, 16384, 0, 0, 0, 65535, 65535, 65535, 65535, 0}, 5123,
+      "VEC4", 3, true);
+  w.add_mesh_node(rgba_shorts);
+  json floats = w.triangle();
+  floats["attributes"]["COLOR_0"] =
+      w.add_floats({0.25f, 0.5f, 0.75f, 1, 2, -1, 0, 0, 0, 0, 0, 0}, "VEC4", 4);
+  w.add_mesh_node(floats);
+  w.doc["images"] = {{{"uri", "white.png"}}};
+  w.doc["textures"] = {{{"source", 0}}};
+  w.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  w.doc["extensionsRequired"] = {"KHR_texture_transform"};
+  const json transform = {{"offset", {0.5, -0.25}},
+                          {"rotation", 1.5707963267948966},
+                          {"scale", {2, 4}},
+                          {"texCoord", 1}};
+  w.doc["materials"] = {
+      {{"pbrMetallicRoughness",
+        {{"baseColorTexture",
+          {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}}}}},
+       {"occlusionTexture", {{"index", 0}, {"texCoord", 1}}},
+       {"emissiveTexture", {{"index", 0}, {"texCoord", 3}}}}};
+  w.write_gltf(dir_ / "colours.gltf");
+
+  const Scene scene = load_gltf(dir_ / "colours.gltf");
+  const auto& first = scene.meshes[0].primitives[0].vertices;
+  EXPECT_EQ(first[0].color, glm::vec4(1, 0, 0, 1));  // RGB: alpha 1
+  EXPECT_EQ(first[2].color, glm::vec4(0, 0, 1, 1));
+  EXPECT_EQ(first[0].uv1, glm::vec2(0.5f, 0.25f));
+  const auto& second = scene.meshes[1].primitives[0].vertices;
+  EXPECT_NEAR(second[0].color.y, 32768.0f / 65535.0f, 1e-6f);
+  EXPECT_NEAR(second[0].color.w, 16384.0f / 65535.0f, 1e-6f);
+  EXPECT_EQ(second[2].color, glm::vec4(1, 1, 1, 0));
+  EXPECT_EQ(second[1].uv1, second[1].uv);  // no TEXCOORD_1: set 0 stands in
+  const auto& third = scene.meshes[2].primitives[0].vertices;
+  EXPECT_EQ(third[0].color, glm::vec4(0.25f, 0.5f, 0.75f, 1));
+  EXPECT_EQ(third[1].color, glm::vec4(1, 0, 0, 0));  // 2 and -1 clamped, with a warning
+  EXPECT_TRUE(any_warning(scene, "meshes[2].primitives[0].attributes.COLOR_0"));
+  EXPECT_EQ(scene.meshes[0].primitives[0].vertices.size(), 3u);
+
+  const Material& m = scene.materials[0];
+  EXPECT_EQ(m.mappings[0].tex_coord, 1);  // the extension's texCoord overrides the slot's 0
+  EXPECT_EQ(m.mappings[0].offset, glm::vec2(0.5f, -0.25f));
+  EXPECT_EQ(m.mappings[0].scale, glm::vec2(2, 4));
+  EXPECT_EQ(m.mappings[3].tex_coord, 1);
+  EXPECT_EQ(m.mappings[4].tex_coord, 0);  // TEXCOORD_3: not supported, set 0 with a warning
+  EXPECT_TRUE(any_warning(scene, "materials[0].emissiveTexture.texCoord: TEXCOORD_3"));
+  // KHR_texture_transform: (u, v) scaled to (2u, 4v), rotated by +90° with the extension's
+  // matrix ((cos, sin), (-sin, cos)) to (4v, -2u), then offset.
+  const glm::vec2 mapped = m.mappings[0].apply(glm::vec2(0.25f, 0.5f));
+  EXPECT_NEAR(mapped.x, 4 * 0.5f + 0.5f, 1e-6f);
+  EXPECT_NEAR(mapped.y, -2 * 0.25f - 0.25f, 1e-6f);
+
+  // A transform that is not numbers is refused at its field.
+  w.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]
+       ["KHR_texture_transform"]["scale"] = {1, "x"};
+  std::ofstream(dir_ / "colours.gltf") << w.doc.dump();
+  EXPECT_TRUE(contains(load_error(dir_ / "colours.gltf"),
+                       "materials[0].pbrMetallicRoughness.baseColorTexture.extensions."
+                       "KHR_texture_transform.scale[1]: expected a finite number"))
+      << load_error(dir_ / "colours.gltf");
+}
+
 TEST_F(GltfLoader, SixteenBitTexture) {
-  // A minimal 2 × 1 16-bit grey PNG: texels 0x1234 and 0xffff (zlib stored block).
-  const std::vector<uint8_t> png = {
-      0x89, 'P',  'N',  'G',  0x0d, 0x0a, 0x1a, 0x0a, 0,    0,    0,    13,   'I',  'H',  'D',
-      'R',  0,    0,    0,    2,    0,    0,    0,    1,    16,   0,    0,    0,    0,    0x81,
-      0xd9, 0xfc, 0x15, 0,    0,    0,    16,   'I',  'D',  'A',  'T',  0x78, 0x01, 0x01, 0x05,
-      0x00, 0xfa, 0xff, 0x00, 0x12, 0x34, 0xff, 0xff, 0x03, 0xe6, 0x02, 0x45, 0xd2, 0xfc, 0x68,
-      0x73, 0,    0,    0,    0,    'I',  'E',  'N',  'D',  0xae, 0x42, 0x60, 0x82};
+  const std::vector<uint8_t> png = test::sixteen_bit_grey_png();
   std::ofstream(dir_ / "deep.png", std::ios::binary)
       .write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
   GltfWriter w;

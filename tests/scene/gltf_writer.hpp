@@ -44,6 +44,20 @@ class GltfWriter {
   int add_floats(const std::vector<float>& values, const std::string& type, size_t components) {
     return add_accessor(values, 5126, type, values.size() / components);
   }
+  // Appends raw bytes (4-byte aligned) as a buffer view; byte_stride 0 leaves it out.
+  int add_view(const std::vector<uint8_t>& bytes, size_t byte_stride = 0) {
+    while (bin.size() % 4) bin.push_back(0);
+    nlohmann::json view = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes.size()}};
+    if (byte_stride) view["byteStride"] = byte_stride;
+    bin.insert(bin.end(), bytes.begin(), bytes.end());
+    doc["bufferViews"].push_back(view);
+    return static_cast<int>(doc["bufferViews"].size()) - 1;
+  }
+  // An image stored in the binary buffer (as GLB exporters write them).
+  int add_image(const std::vector<uint8_t>& bytes, const std::string& mime_type) {
+    doc["images"].push_back({{"bufferView", add_view(bytes)}, {"mimeType", mime_type}});
+    return static_cast<int>(doc["images"].size()) - 1;
+  }
   int add_indices(const std::vector<uint16_t>& values) {
     return add_accessor(values, 5123, "SCALAR", values.size());
   }
@@ -122,6 +136,15 @@ class GltfWriter {
     doc["buffers"] = nlohmann::json::array({buffer});
   }
 };
+
+// A minimal 2 × 1 16-bit grey PNG: texels 0x1234 and 0xffff (zlib stored block).
+inline std::vector<uint8_t> sixteen_bit_grey_png() {
+  return {0x89, 'P',  'N',  'G',  0x0d, 0x0a, 0x1a, 0x0a, 0,    0,    0,    13,   'I',  'H',  'D',
+          'R',  0,    0,    0,    2,    0,    0,    0,    1,    16,   0,    0,    0,    0,    0x81,
+          0xd9, 0xfc, 0x15, 0,    0,    0,    16,   'I',  'D',  'A',  'T',  0x78, 0x01, 0x01, 0x05,
+          0x00, 0xfa, 0xff, 0x00, 0x12, 0x34, 0xff, 0xff, 0x03, 0xe6, 0x02, 0x45, 0xd2, 0xfc, 0x68,
+          0x73, 0,    0,    0,    0,    'I',  'E',  'N',  'D',  0xae, 0x42, 0x60, 0x82};
+}
 
 // A fresh empty directory under the system temp dir.
 inline std::filesystem::path fresh_dir(const std::string& name) {

@@ -251,13 +251,20 @@ void main() {
   values[11] = light.direction.y;
   values[12] = light.position.y;
   values[13] = float(light.shadow_index);
-  MaterialSample s = sample_material(1u, vec2(0.5), vec3(0.0, 0.0, 2.0), vec4(1.0, 0.0, 0.0, 1.0));
+  SurfaceAttributes left = SurfaceAttributes(vec2(0.25, 0.5), vec2(0.0), vec4(1.0));
+  MaterialSample s = sample_material(1u, left, vec3(0.0, 0.0, 2.0), vec4(1.0, 0.0, 0.0, 1.0));
   values[14] = s.base_color.r;
   values[15] = s.normal.z;
   values[16] = s.roughness;
   values[17] = s.alpha_blend ? 1.0 : 0.0;
   vec4 t = scene_world_tangent(instance, vec4(1.0, 0.0, 0.0, 1.0));
   values[18] = t.w;
+  // Material 2 reads TEXCOORD_1 through u' = 0.5 u + 0.5 (the white half) and the vertex
+  // colour multiplies.
+  SurfaceAttributes mapped = SurfaceAttributes(vec2(0.25, 0.5), vec2(0.5), vec4(0.5, 1.0, 1.0, 0.25));
+  vec4 c = sample_material(2u, mapped, vec3(0.0, 0.0, 1.0), vec4(1.0, 0.0, 0.0, 1.0)).base_color;
+  values[19] = c.r;
+  values[20] = c.a;
 }
 )";
 
@@ -297,11 +304,17 @@ TEST_F(GpuSceneTest, ShadersSeeTheSameData) {
   SceneBuilder b("shader");
   b.add_material(Material{});
   Texture colour;
-  colour.name = "grey";
-  colour.width = 2;
-  colour.height = 2;
+  colour.name = "grey-white";
+  // Left half sRGB 188 ≈ linear 0.5, right half white; wide, so that the halves stay apart in
+  // every mip level the samples below may blend (lavapipe blends mips even at explicit lod 0
+  // when the sampler is anisotropic).
+  colour.width = 64;
+  colour.height = 1;
   colour.srgb = true;
-  colour.pixels.assign(2 * 2 * 4, 188);  // sRGB 188 ≈ linear 0.5
+  for (uint32_t x = 0; x < colour.width; ++x) {
+    const uint8_t value = x < colour.width / 2 ? 188 : 255;
+    colour.pixels.insert(colour.pixels.end(), {value, value, value, 255});
+  }
   Material m;
   m.base_color = glm::vec4(0.5f, 1.0f, 1.0f, 1.0f);
   m.roughness = 0.01f;  // clamped to 0.03 by sample_material
@@ -309,6 +322,12 @@ TEST_F(GpuSceneTest, ShadersSeeTheSameData) {
   m.alpha_mode = AlphaMode::Blend;
   m.base_color_tex = b.add_texture(colour);
   const int material = b.add_material(m);
+  Material mapped = m;
+  mapped.alpha_mode = AlphaMode::Mask;
+  mapped.mappings[0].tex_coord = 1;
+  mapped.mappings[0].offset = glm::vec2(0.5f, 0.0f);
+  mapped.mappings[0].scale = glm::vec2(0.5f, 1.0f);
+  b.add_material(mapped);
   const int node = b.add_quad("q", {0, 0, 0}, {1, 0, 0}, {0, 0, -1}, material);
   b.scene().nodes[size_t(node)].translation = glm::vec3(3, 0, 0);
   b.scene().nodes[size_t(node)].scale = glm::vec3(-1, 2, 1);
@@ -358,15 +377,19 @@ TEST_F(GpuSceneTest, ShadersSeeTheSameData) {
   EXPECT_FLOAT_EQ(v[15], 1.0f);
   EXPECT_FLOAT_EQ(v[16], 0.03f);
   EXPECT_EQ(v[17], 1.0f);
-  EXPECT_EQ(v[18], -1.0f);  // mirrored instance flips the handedness
+  EXPECT_EQ(v[18], -1.0f);                        // mirrored instance flips the handedness
+  EXPECT_NEAR(v[19], 0.5f * 1.0f * 0.5f, 1e-3f);  // factor × white texel × vertex colour
+  EXPECT_FLOAT_EQ(v[20], 0.25f);                  // alpha: factor 1 × texel 1 × vertex 0.25
 }
 
 TEST(GpuSceneLayout, VertexInputMatchesVertex) {
   const auto attributes = GpuScene::vertex_attributes();
-  ASSERT_EQ(attributes.size(), 4u);
+  ASSERT_EQ(attributes.size(), 6u);
   EXPECT_EQ(attributes[2].offset, offsetof(Vertex, tangent));
   EXPECT_EQ(attributes[3].offset, 40u);
-  EXPECT_EQ(GpuScene::vertex_binding().stride, 48u);
+  EXPECT_EQ(attributes[4].offset, 48u);
+  EXPECT_EQ(attributes[5].offset, 56u);
+  EXPECT_EQ(GpuScene::vertex_binding().stride, 72u);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // voxgi graph check FILE / voxgi graph explain FILE --scene S
 
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -8,6 +10,7 @@
 #include "apps/voxgi/commands.hpp"
 #include "engine/gpu/context.hpp"
 #include "engine/graph/dump.hpp"
+#include "engine/graph/memory_budget.hpp"
 #include "engine/runtime/scene_source.hpp"
 
 namespace voxgi::cli {
@@ -27,10 +30,31 @@ Args graph_args(const std::string& verb) {
        {"dump-dir", true, false, "DIR", "write every compile phase (JSON, DOT) to DIR"},
        {"device", true, false, "INDEX|NAME",
         "query this Vulkan device's features for `when` conditions (default: no device, every "
-        "device feature reads as absent)"},
+        "device feature reads as absent) and check the graph's memory against it"},
+       {"memory-budget", true, false, "SIZE",
+        "check the graph's memory against SIZE (e.g. 8GiB, 512MiB) as if a device had that much"},
        {"full-barriers", false, false, "", "compile with a full barrier between passes"},
        {"no-memory-sharing", false, false, "", "give every transient resource its own memory"},
        {"help", false, false, "", "show this help"}});
+}
+
+// "8GiB", "512MiB", "1.5GiB", "4096" (bytes).
+uint64_t parse_byte_size(const std::string& option, const std::string& text) {
+  static const std::pair<const char*, double> kUnits[] = {
+      {"GiB", 1024.0 * 1024 * 1024}, {"MiB", 1024.0 * 1024}, {"KiB", 1024.0}, {"", 1.0}};
+  for (const auto& [unit, scale] : kUnits) {
+    const size_t n = std::strlen(unit);
+    if (text.size() <= n || text.compare(text.size() - n, n, unit) != 0) continue;
+    const std::string number = text.substr(0, text.size() - n);
+    char* end = nullptr;
+    const double value = std::strtod(number.c_str(), &end);
+    if (end == number.c_str() + number.size() && value > 0.0 && value * scale < 1e18) {
+      return static_cast<uint64_t>(value * scale);
+    }
+    break;
+  }
+  throw UsageError(option + ": expected a size such as 8GiB, 512MiB or a byte count, got '" + text +
+                   "'");
 }
 
 }  // namespace
@@ -67,6 +91,13 @@ int graph_command(const std::vector<std::string>& argv) {
       compile_options(args, scene, static_cast<uint32_t>(args.integer("width", 1280, 1, 16384)),
                       static_cast<uint32_t>(args.integer("height", 720, 1, 16384)), device.get());
   const graph::CompiledGraph compiled = graph::compile(desc, registry, options);
+  // The check `voxgi render` makes before allocating anything, made here for a named device
+  // or a stated budget.
+  if (const std::optional<std::string> budget = args.value("memory-budget")) {
+    graph::check_memory_budget(compiled, parse_byte_size("--memory-budget", *budget));
+  } else if (device) {
+    graph::check_memory_budget(compiled, graph::device_memory_budget(device->physical_device()));
+  }
 
   if (const std::optional<std::string> dump_dir = args.value("dump-dir")) {
     graph::dump_phases(desc, compiled, *dump_dir);

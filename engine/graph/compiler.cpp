@@ -390,11 +390,13 @@ class Compiler {
       query.scene = &options_.scene_features;
       query.viewport_width = options_.viewport_width;
       query.viewport_height = options_.viewport_height;
+      bool upstream_failed = false;  // a slot it sizes from failed, with its own error
       query.bound = [&](std::string_view slot) -> const ResourceInfo* {
         for (const auto* list : {&pd.inputs, &pd.outputs}) {
           for (const BindingDesc& other : *list) {
             if (other.slot != slot) continue;
             const int o = resource_index(other.resource);
+            if (o >= 0 && sizing_[static_cast<size_t>(o)] == Sizing::Failed) upstream_failed = true;
             if (o < 0 || !resource_ok_[static_cast<size_t>(o)]) return nullptr;
             return &graph_.resources[static_cast<size_t>(o)].info;
           }
@@ -420,6 +422,8 @@ class Compiler {
         r.info.format = spec->formats.front();
       }
       const DerivedSize size = spec->size_rule(query);
+      // One error per cause: what failed upstream was reported there.
+      if (!size.unavailable.empty() && upstream_failed) continue;
       if (!size.unavailable.empty()) {
         diags_.error(rd.loc, {}, field,
                      "no size given, and pass '" + pd.name + "' cannot derive one for slot '" +
@@ -443,14 +447,17 @@ class Compiler {
     switch (r.info.kind) {
       case ResourceKind::Buffer:
         if (size.bytes == 0 || size.bytes > kMaxBufferBytes)
-          return bad("a buffer of " + std::to_string(size.bytes) + " bytes");
+          return bad("a buffer of " + std::to_string(size.bytes) +
+                     " bytes (from 1 byte to 4 GiB); lower the parameters that size it");
         r.info.buffer_size = size.bytes;
         return true;
       case ResourceKind::Clipmap:
         if (size.resolution == 0 || size.levels == 0 || size.levels > 16 ||
             double(size.resolution) * size.levels > kMaxImageSize3D)
           return bad("a clipmap of " + std::to_string(size.levels) + " levels of " +
-                     std::to_string(size.resolution) + "^3");
+                     std::to_string(size.resolution) + "^3 (at most 16 levels and " +
+                     std::to_string(kMaxImageSize3D) +
+                     " voxels for resolution × levels); lower the parameters that size it");
         r.info.extent = {size.resolution, size.resolution, size.resolution * size.levels};
         r.info.clipmap_levels = size.levels;
         return true;
@@ -462,7 +469,8 @@ class Compiler {
         if (size.width == 0 || size.height == 0 || depth == 0 || size.width > max ||
             size.height > max || depth > max)
           return bad("an image of " + std::to_string(size.width) + "x" +
-                     std::to_string(size.height) + (flat ? "" : "x" + std::to_string(depth)));
+                     std::to_string(size.height) + (flat ? "" : "x" + std::to_string(depth)) +
+                     " (each side from 1 to " + std::to_string(uint32_t(max)) + ")");
         r.info.extent = {size.width, size.height, depth};
         if (flat && size.layers > 0) r.info.array_layers = size.layers;
         return true;

@@ -234,6 +234,36 @@ TEST_F(VoxgiCli, GraphCheckRefusesTransientOutputsOfPassesThatMaySkip) {
   EXPECT_TRUE(failed_before_rendering(r));
 }
 
+// Sizes beyond what any device allows, and memory beyond a stated budget, are refused by
+// `graph check` with one located error per cause, naming the limit.
+TEST_F(VoxgiCli, GraphCheckRefusesOversizedGraphsAndChecksAMemoryBudget) {
+  const ProcessResult huge = voxgi({"graph", "check", "graphs/vct.json", "--set",
+                                    "voxel.resolution=512", "--set", "voxel.levels=6"});
+  EXPECT_TRUE(exited_with(huge, kError));
+  EXPECT_TRUE(stderr_has(huge, {"field 'resources.voxel.albedo': pass 'voxelize' derives a "
+                                "clipmap of 6 levels of 512^3 (at most 16 levels and 2048"}));
+  // The volumes sized from the voxel volumes do not repeat the cause.
+  EXPECT_EQ(huge.err.find("resources.vct.radiance"), std::string::npos) << huge.err;
+
+  const std::vector<std::string> big = {
+      "graph", "check",          "graphs/vct.json", "--set", "voxel.resolution=256",
+      "--set", "voxel.levels=6", "--memory-budget"};
+  std::vector<std::string> small_budget = big;
+  small_budget.push_back("8GiB");
+  const ProcessResult over = voxgi(small_budget);
+  EXPECT_TRUE(exited_with(over, kError));
+  EXPECT_TRUE(stderr_has(over, {"error: field 'resources.voxel.scratch': the graph needs",
+                                "more than the device's 8.00 GiB", "voxel.scratch 1.38 GiB"}));
+  std::vector<std::string> large_budget = big;
+  large_budget.push_back("16GiB");
+  EXPECT_TRUE(exited_with(voxgi(large_budget), 0));
+  std::vector<std::string> bad_size = big;
+  bad_size.push_back("8GB");
+  const ProcessResult bad = voxgi(bad_size);
+  EXPECT_TRUE(exited_with(bad, kUsageError));
+  EXPECT_TRUE(stderr_has(bad, {"--memory-budget: expected a size such as 8GiB"}));
+}
+
 // Half-resolution cone tracing needs its scratch image: found by `graph check`, not at render.
 TEST_F(VoxgiCli, GraphCheckRefusesHalfResolutionWithoutHalfRes) {
   // A copy of the gather fragment without the scratch binding, next to the graph.

@@ -305,9 +305,9 @@ TEST_F(GpuSceneTest, ShadersSeeTheSameData) {
   b.add_material(Material{});
   Texture colour;
   colour.name = "grey-white";
-  // Left half sRGB 188 ≈ linear 0.5, right half white; wide, so that the halves stay apart in
-  // every mip level the samples below may blend (lavapipe blends mips even at explicit lod 0
-  // when the sampler is anisotropic).
+  // Left half sRGB 188 ≈ linear 0.5, right half white; wide, so that the samples below lie
+  // texels away from the edge (lavapipe's anisotropic filter takes taps around the point even
+  // at an explicit lod: 9% of the neighbour at a texel's centre).
   colour.width = 64;
   colour.height = 1;
   colour.srgb = true;

@@ -2,8 +2,9 @@
 # The whole test suite: installs missing packages, builds, runs ctest.
 # GPU tests run on whatever Vulkan device is present (Mesa lavapipe without a GPU), always with
 # the validation layer on. Without arguments the input tests (fuzzing, graph and bench files,
-# scene loading; no GPU) then run again in a build with AddressSanitizer and
-# UndefinedBehaviorSanitizer (docs/inputs.md); arguments go to ctest and skip that stage.
+# scene loading; no GPU) then run again in a clang build with AddressSanitizer and
+# UndefinedBehaviorSanitizer, and that build's libFuzzer targets run for a bounded time each
+# (docs/inputs.md); arguments go to ctest and skip that stage.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 third_party_config/install-deps.sh
@@ -12,13 +13,23 @@ cmake --build build -j2
 ctest --test-dir build --output-on-failure -j2 --timeout 600 "$@"
 if [ "$#" -eq 0 ]; then
   sanitized_tests=(voxgi_input_fuzz_tests voxgi_graph_tests voxgi_bench_unit_tests voxgi_scene_tests)
-  cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVOXGI_SANITIZE=address,undefined
+  # libFuzzer needs clang; a build-sanitize configured with another compiler is configured anew.
+  fresh=()
+  if [ -f build-sanitize/CMakeCache.txt ] &&
+    ! grep -q '^CMAKE_CXX_COMPILER:FILEPATH=.*clang++' build-sanitize/CMakeCache.txt; then
+    fresh=(--fresh)
+  fi
+  CC=clang CXX=clang++ cmake "${fresh[@]}" -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DVOXGI_SANITIZE=address,undefined -DVOXGI_FUZZ=ON
   # The pass plugins too: the graph fuzzing compiles against the real pass types.
   cmake --build build-sanitize -j2 --target "${sanitized_tests[@]}" voxgi_passes_common \
-    voxgi_passes_vct voxgi_passes_dvs voxgi_passes_reference
+    voxgi_passes_vct voxgi_passes_dvs voxgi_passes_reference voxgi_fuzz_targets
   # Leak checking needs ptrace, which some containers forbid; memory errors and undefined
   # behaviour are what this stage is for (ASAN_OPTIONS=detect_leaks=1 locally to add leaks).
   for test in "${sanitized_tests[@]}"; do
     (cd build-sanitize && ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0}" "bin/$test" --gtest_brief=1)
   done
+  # Coverage-guided fuzzing of the JSON reader, graph files, expressions, bench files and glTF,
+  # VOXGI_FUZZ_SECONDS each (tests/fuzz/run-libfuzzer.sh runs them longer locally).
+  tests/fuzz/run-libfuzzer.sh build-sanitize "${VOXGI_FUZZ_SECONDS:-60}"
 fi

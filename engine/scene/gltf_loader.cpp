@@ -1042,7 +1042,15 @@ class Loader {
         const tinygltf::Value& v = ext->second.Get("light");
         const std::string ext_field = field + ".extensions.KHR_lights_punctual.light";
         if (!v.IsInt() && !v.IsNumber()) fail(ext_field, "expected a light index");
-        const int index = v.GetNumberAsInt();
+        // A number outside int's range would overflow the conversion: range-check it first.
+        const double number = v.GetNumberAsDouble();
+        if (!(number >= 0.0 && number < double(model_.lights.size())) ||
+            number != std::floor(number)) {
+          fail(ext_field, "expected a light index from 0 to " +
+                              std::to_string(int(model_.lights.size()) - 1) + ", got " +
+                              std::to_string(number));
+        }
+        const int index = int(number);
         check_index(index, model_.lights.size(), ext_field, "light");
         const tinygltf::Light& l = model_.lights[size_t(index)];
         const std::string light_field =

@@ -520,6 +520,20 @@ TEST_F(GltfLoader, MissingBufferFileNamesTheFieldAndTheFolder) {
       << message;
 }
 
+// A light index far outside int's range is refused before any conversion (a fuzzer found the
+// overflow).
+TEST_F(GltfLoader, HugeLightIndexIsRefused) {
+  std::ofstream(dir_ / "light.gltf") << R"({"asset":{"version":"2.0"},"scene":0,
+    "scenes":[{"nodes":[0]}],"extensionsUsed":["KHR_lights_punctual"],
+    "nodes":[{"extensions":{"KHR_lights_punctual":{"light":1e19}}}],
+    "extensions":{"KHR_lights_punctual":{"lights":[{"type":"point"}]}}})";
+  const std::string message = load_error(dir_ / "light.gltf");
+  EXPECT_TRUE(contains(message,
+                       "nodes[0].extensions.KHR_lights_punctual.light: expected a light "
+                       "index from 0 to 0"))
+      << message;
+}
+
 TEST_F(GltfLoader, NodeCycleIsAnError) {
   GltfWriter w;
   w.add_node({{"children", {1}}});

@@ -117,20 +117,7 @@ TEST(InputFuzz, BenchFilesParseOrAreRefused) {
 // text (its buffer in a .bin next to it) and as GLB bytes.
 TEST(InputFuzz, GltfFilesLoadOrAreRefused) {
   const std::filesystem::path dir = fresh_dir("fuzz_gltf");
-  GltfWriter w;
-  const int child = w.add_node({{"name", "child"}, {"translation", {0, 0, -1}}}, false);
-  w.doc["meshes"].push_back({{"primitives", nlohmann::json::array({w.triangle()})}});
-  w.doc["nodes"][child]["mesh"] = 0;
-  w.add_node({{"name", "parent"}, {"children", {child}}, {"scale", {1, 2, 1}}});
-  w.doc["extensionsUsed"] = {"KHR_lights_punctual"};
-  w.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
-      {{"type", "point"}, {"color", {1, 1, 1}}, {"intensity", 20}}};
-  w.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
-  w.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.05}}}}};
-  w.add_node({{"camera", 0}, {"translation", {0, 0, 10}}});
-  w.doc["materials"] = {
-      {{"emissiveFactor", {1, 0.5, 0}}, {"pbrMetallicRoughness", {{"roughnessFactor", 0.3}}}}};
-  w.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  GltfWriter w = hierarchy_document();
   w.write_gltf(dir / "seed.gltf");
   const std::vector<uint8_t> glb = w.glb_bytes();
   scene::load_gltf(dir / "seed.gltf");  // the seeds themselves load

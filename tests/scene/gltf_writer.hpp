@@ -146,6 +146,42 @@ inline std::vector<uint8_t> sixteen_bit_grey_png() {
           0x73, 0,    0,    0,    0,    'I',  'E',  'N',  'D',  0xae, 0x42, 0x60, 0x82};
 }
 
+// Base64 (RFC 4648, padded), for data URIs.
+inline std::string base64(const std::vector<uint8_t>& bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    uint32_t v = uint32_t(bytes[i]) << 16;
+    if (i + 1 < bytes.size()) v |= uint32_t(bytes[i + 1]) << 8;
+    if (i + 2 < bytes.size()) v |= bytes[i + 2];
+    out += kDigits[(v >> 18) & 63];
+    out += kDigits[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? kDigits[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[v & 63] : '=';
+  }
+  return out;
+}
+
+// A document with a node hierarchy, a point light, a camera, an emissive material and indices:
+// the fuzzers' glTF seed.
+inline GltfWriter hierarchy_document() {
+  GltfWriter w;
+  const int child = w.add_node({{"name", "child"}, {"translation", {0, 0, -1}}}, false);
+  w.doc["meshes"].push_back({{"primitives", nlohmann::json::array({w.triangle()})}});
+  w.doc["nodes"][child]["mesh"] = 0;
+  w.add_node({{"name", "parent"}, {"children", {child}}, {"scale", {1, 2, 1}}});
+  w.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  w.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "point"}, {"color", {1, 1, 1}}, {"intensity", 20}}};
+  w.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  w.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.05}}}}};
+  w.add_node({{"camera", 0}, {"translation", {0, 0, 10}}});
+  w.doc["materials"] = {
+      {{"emissiveFactor", {1, 0.5, 0}}, {"pbrMetallicRoughness", {{"roughnessFactor", 0.3}}}}};
+  w.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  return w;
+}
+
 // A fresh empty directory under the system temp dir.
 inline std::filesystem::path fresh_dir(const std::string& name) {
   static int counter = 0;

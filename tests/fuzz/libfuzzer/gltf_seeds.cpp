@@ -27,33 +27,16 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using voxgi::test::base64;
 using voxgi::test::GltfWriter;
+using voxgi::test::hierarchy_document;
+using voxgi::test::sixteen_bit_grey_png;
 
 // A 1 x 1 RGBA PNG and a 2 x 1 16-bit grey PNG.
 constexpr const char* kPng8 =
     "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNkYPhfDwAChwGA"
     "60e6kgAAAABJRU5ErkJggg==";
-const std::vector<uint8_t> kPng16 = {
-    0x89, 'P',  'N',  'G',  0x0d, 0x0a, 0x1a, 0x0a, 0,    0,    0,    13,   'I',  'H',  'D',
-    'R',  0,    0,    0,    2,    0,    0,    0,    1,    16,   0,    0,    0,    0,    0x81,
-    0xd9, 0xfc, 0x15, 0,    0,    0,    16,   'I',  'D',  'A',  'T',  0x78, 0x01, 0x01, 0x05,
-    0x00, 0xfa, 0xff, 0x00, 0x12, 0x34, 0xff, 0xff, 0x03, 0xe6, 0x02, 0x45, 0xd2, 0xfc, 0x68,
-    0x73, 0,    0,    0,    0,    'I',  'E',  'N',  'D',  0xae, 0x42, 0x60, 0x82};
-
-std::string base64(const std::vector<uint8_t>& bytes) {
-  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    uint32_t v = uint32_t(bytes[i]) << 16;
-    if (i + 1 < bytes.size()) v |= uint32_t(bytes[i + 1]) << 8;
-    if (i + 2 < bytes.size()) v |= bytes[i + 2];
-    out += digits[(v >> 18) & 63];
-    out += digits[(v >> 12) & 63];
-    out += i + 1 < bytes.size() ? digits[(v >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? digits[v & 63] : '=';
-  }
-  return out;
-}
+const std::vector<uint8_t> kPng16 = sixteen_bit_grey_png();
 
 std::vector<uint8_t> read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -81,20 +64,7 @@ void triangle(const fs::path& out) {
 
 // The input tests' document: hierarchy, camera, light, material, indices.
 void hierarchy(const fs::path& out) {
-  GltfWriter w;
-  const int child = w.add_node({{"name", "child"}, {"translation", {0, 0, -1}}}, false);
-  w.doc["meshes"].push_back({{"primitives", json::array({w.triangle()})}});
-  w.doc["nodes"][child]["mesh"] = 0;
-  w.add_node({{"name", "parent"}, {"children", {child}}, {"scale", {1, 2, 1}}});
-  w.doc["extensionsUsed"] = {"KHR_lights_punctual"};
-  w.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
-      {{"type", "point"}, {"color", {1, 1, 1}}, {"intensity", 20}}};
-  w.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
-  w.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.05}}}}};
-  w.add_node({{"camera", 0}, {"translation", {0, 0, 10}}});
-  w.doc["materials"] = {
-      {{"emissiveFactor", {1, 0.5, 0}}, {"pbrMetallicRoughness", {{"roughnessFactor", 0.3}}}}};
-  w.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  GltfWriter w = hierarchy_document();
   write_both(w, out, "hierarchy");
 }
 

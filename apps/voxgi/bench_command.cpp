@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -438,8 +439,9 @@ int run_bench(const std::vector<std::string>& argv) {
     return 0;
   }
   // A mistyped subcommand reads as a missing bench file; say what was probably meant.
+  std::error_code missing;
   if (!args.positional().empty() &&
-      !fs::exists(runtime::resolve_graph_path(args.positional()[0]))) {
+      !fs::exists(runtime::resolve_graph_path(args.positional()[0]), missing)) {
     if (const std::string close = closest_match(args.positional()[0], {"merge", "bvh"});
         !close.empty()) {
       throw UsageError("voxgi bench: no bench file '" + args.positional()[0] +

@@ -8,6 +8,7 @@
 #include <iterator>
 #include <set>
 #include <sstream>
+#include <system_error>
 
 #include "apps/voxgi/bench_hash.hpp"
 #include "apps/voxgi/cli_args.hpp"
@@ -185,14 +186,16 @@ class BenchParser {
     return {};
   }
 
-  // Relative to the bench file's folder first, then to the source tree.
+  // Relative to the bench file's folder first, then to the source tree. The error_code forms:
+  // a name the system cannot look up (too long, say) is a file that is not there.
   fs::path resolve(const std::string& written) const {
     const fs::path path(written);
     if (path.is_absolute()) return path;
+    std::error_code ec;
     const fs::path beside = file_.parent_path() / path;
-    if (fs::exists(beside)) return beside.lexically_normal();
+    if (fs::exists(beside, ec)) return beside.lexically_normal();
     const fs::path in_repo = repo_dir_ / path;
-    if (fs::exists(in_repo)) return in_repo.lexically_normal();
+    if (fs::exists(in_repo, ec)) return in_repo.lexically_normal();
     return beside.lexically_normal();
   }
 
@@ -200,7 +203,8 @@ class BenchParser {
     const std::string written = string_of(value, field);
     if (written.empty()) return {};
     const fs::path path = resolve(written);
-    if (!fs::is_regular_file(path)) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
       error(
           value.loc(), field,
           "file '" + written + "' not found (looked beside the bench file and in the source tree)");

@@ -1,6 +1,7 @@
 #include "engine/runtime/scene_source.hpp"
 
 #include <stdexcept>
+#include <system_error>
 
 #include "engine/scene/builtin_scenes.hpp"
 #include "engine/scene/gltf_loader.hpp"
@@ -35,9 +36,10 @@ std::filesystem::path repo_dir() {
 
 std::filesystem::path resolve_graph_path(const std::string& arg) {
   const std::filesystem::path path(arg);
-  if (std::filesystem::exists(path) || path.is_absolute()) return path;
+  std::error_code ec;  // a name that cannot be looked up is one that does not exist
+  if (std::filesystem::exists(path, ec) || path.is_absolute()) return path;
   const std::filesystem::path in_source = repo_dir() / path;
-  return std::filesystem::exists(in_source) ? in_source : path;
+  return std::filesystem::exists(in_source, ec) ? in_source : path;
 }
 
 OverrideError::OverrideError(const std::string& bad_setting)

@@ -982,6 +982,7 @@ class Loader {
       if (scene_.nodes[i].mesh < 0 || !any) continue;
       const int mesh = scene_.nodes[i].mesh;
       scene_.nodes[i].mesh = -1;  // drawn by its instances only
+      size_t skipped = 0;
       for (size_t n = 0; n < count; ++n) {
         Node instance;
         instance.name = scene_.nodes[i].name + "#" + std::to_string(n);
@@ -999,12 +1000,17 @@ class Loader {
           for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(local[c][r]);
         }
         if (!finite) {
-          warn(field + ": instance " + std::to_string(n) + " has a non-finite transform; skipped");
+          ++skipped;
           continue;
         }
         scene_.nodes[i].children.push_back(int(scene_.nodes.size()));
         scene_.nodes.push_back(std::move(instance));
         visible_.push_back(visible_[i]);
+      }
+      // One warning per node: an accessor of zeros would otherwise give one per instance.
+      if (skipped > 0) {
+        warn(field + ": " + std::to_string(skipped) + " of " + std::to_string(count) +
+             " instances have a non-finite transform; skipped");
       }
     }
   }

@@ -534,6 +534,25 @@ TEST_F(GltfLoader, HugeLightIndexIsRefused) {
       << message;
 }
 
+// EXT_mesh_gpu_instancing: instances whose transform is not finite are skipped, with one
+// warning for the node rather than one per instance; a zero rotation reads as the identity.
+TEST_F(GltfLoader, InstancesWithNonFiniteTransformsAreSkippedWithOneWarning) {
+  GltfWriter w;
+  w.add_mesh_node(w.triangle());
+  const float nan = std::nanf("");
+  const int translations = w.add_floats({0, 0, 0, nan, 0, 0, 1, 1, 1, 0, nan, 0}, "VEC3", 3);
+  w.doc["accessors"].push_back({{"componentType", 5126}, {"type", "VEC4"}, {"count", 4}});
+  const int zero_rotations = int(w.doc["accessors"].size()) - 1;
+  w.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = {
+      {"TRANSLATION", translations}, {"ROTATION", zero_rotations}};
+  w.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+  w.write_gltf(dir_ / "instances.gltf");
+  const Scene scene = load_gltf(dir_ / "instances.gltf");
+  EXPECT_EQ(scene.instances().size(), 2u);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_TRUE(any_warning(scene, "2 of 4 instances have a non-finite transform"));
+}
+
 TEST_F(GltfLoader, NodeCycleIsAnError) {
   GltfWriter w;
   w.add_node({{"children", {1}}});

@@ -1057,7 +1057,6 @@ class Loader {
                               std::to_string(number));
         }
         const int index = int(number);
-        check_index(index, model_.lights.size(), ext_field, "light");
         const tinygltf::Light& l = model_.lights[size_t(index)];
         const std::string light_field =
             "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";

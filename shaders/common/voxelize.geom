@@ -111,16 +111,14 @@ void main() {
   vec3 rel[3] = vec3[3](vec3(0.0), e1, e2);
   float lod = 0.0;
   {
-    // The base colour's footprint: its UV set through the linear part of its transform.
+    // The base colour's footprint: its texture coordinates at the three vertices.
     SceneMaterial m = scene_materials[scene_instances[in_instance[0]].material];
-    vec4 row0 = m.uv_rows[0], row1 = m.uv_rows[1];
-    bool set1 = row0.w > 0.5;
-    vec2 uv0 = set1 ? in_uv1[0] : in_uv[0];
-    vec2 uv1 = set1 ? in_uv1[1] : in_uv[1];
-    vec2 uv2 = set1 ? in_uv1[2] : in_uv[2];
-    mat2 linear = mat2(row0.x, row1.x, row0.y, row1.y);  // columns
+    vec2 t[3];
+    for (int i = 0; i < 3; ++i) {
+      t[i] = scene_texture_coords(m, 0u, SurfaceAttributes(in_uv[i], in_uv1[i], vec4(1.0)));
+    }
     vec2 tex = vec2(textureSize(scene_textures_srgb, 0).xy);
-    vec2 duv1 = linear * (uv1 - uv0) * tex, duv2 = linear * (uv2 - uv0) * tex;
+    vec2 duv1 = (t[1] - t[0]) * tex, duv2 = (t[2] - t[0]) * tex;
     float texel_area = abs(cross2(duv1, duv2));
     float ratio = texel_area / sqrt(n_len2);  // texels per voxel face (both areas doubled)
     lod = ratio > 1.0 ? clamp(0.5 * log2(ratio), 0.0, 16.0) : 0.0;

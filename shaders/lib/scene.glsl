@@ -117,12 +117,16 @@ struct MaterialSample {
 };
 
 // The coordinates slot `slot` samples at: its TEXCOORD set through its transform
-// (KHR_texture_transform). The sampler repeats; clamp-to-edge textures (glTF CLAMP_TO_EDGE) are
-// clamped here.
-vec2 scene_texture_uv(SceneMaterial m, uint slot, SurfaceAttributes a) {
+// (KHR_texture_transform); scene_texture_uv then clamps clamp-to-edge textures (glTF
+// CLAMP_TO_EDGE), since the sampler repeats.
+vec2 scene_texture_coords(SceneMaterial m, uint slot, SurfaceAttributes a) {
   vec4 row0 = m.uv_rows[2u * slot];
   vec3 uv = vec3(row0.w > 0.5 ? a.uv1 : a.uv0, 1.0);
-  vec2 mapped = vec2(dot(row0.xyz, uv), dot(m.uv_rows[2u * slot + 1u].xyz, uv));
+  return vec2(dot(row0.xyz, uv), dot(m.uv_rows[2u * slot + 1u].xyz, uv));
+}
+
+vec2 scene_texture_uv(SceneMaterial m, uint slot, SurfaceAttributes a) {
+  vec2 mapped = scene_texture_coords(m, slot, a);
   return (m.clamp_mask & (1u << slot)) != 0u ? clamp(mapped, 0.0, 1.0) : mapped;
 }
 

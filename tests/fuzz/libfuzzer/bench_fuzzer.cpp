@@ -3,19 +3,12 @@
 // refused with a GraphError.
 
 #include <cstdint>
-#include <filesystem>
-#include <string>
 
-#include "apps/voxgi/bench_spec.hpp"
+#include "tests/fuzz/fuzz_inputs.hpp"
 #include "tests/fuzz/libfuzzer/fuzz_target.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const std::filesystem::path repo = VOXGI_SOURCE_DIR;
-  static const std::filesystem::path file = repo / "graphs" / "fuzz-bench.json";
   const std::string text = voxgi::fuzz::text_of(data, size);
-  voxgi::fuzz::accept_or_refuse([&] {
-    const voxgi::cli::BenchSpec spec = voxgi::cli::parse_bench(text, file, repo);
-    voxgi::cli::expand_configurations(spec);
-  });
+  voxgi::fuzz::accept_or_refuse([&] { voxgi::fuzz::run_bench(text); });
   return 0;
 }

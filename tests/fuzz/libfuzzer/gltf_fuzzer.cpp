@@ -10,13 +10,11 @@
 
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <system_error>
 
-#include "engine/scene/gltf_loader.hpp"
+#include "tests/fuzz/fuzz_inputs.hpp"
 #include "tests/fuzz/libfuzzer/fuzz_target.hpp"
 
 namespace {
@@ -51,20 +49,7 @@ struct Scratch {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const Scratch scratch;
-  const bool glb = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
-  const fs::path path = scratch.dir / (glb ? "input.glb" : "input.gltf");
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-    if (!out) voxgi::fuzz::unexpected("cannot write " + path.string());
-  }
-  voxgi::fuzz::accept_or_refuse([&] {
-    voxgi::scene::Scene scene = voxgi::scene::load_gltf(path);
-    scene.instances();
-    glm::vec3 lo, hi;
-    scene.bounds(lo, hi);
-    scene.features();
-    if (!scene.animations.empty()) scene.animate(0.5);
-  });
+  const std::string bytes(reinterpret_cast<const char*>(data), size);
+  voxgi::fuzz::accept_or_refuse([&] { voxgi::fuzz::run_gltf(bytes, scratch.dir); });
   return 0;
 }

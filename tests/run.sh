@@ -23,7 +23,7 @@ if [ "$#" -eq 0 ]; then
     -DVOXGI_SANITIZE=address,undefined -DVOXGI_FUZZ=ON
   # The pass plugins too: the graph fuzzing compiles against the real pass types.
   cmake --build build-sanitize -j2 --target "${sanitized_tests[@]}" voxgi_passes_common \
-    voxgi_passes_vct voxgi_passes_dvs voxgi_passes_reference voxgi_fuzz_targets
+    voxgi_passes_vct voxgi_passes_dvs voxgi_passes_lpv voxgi_passes_reference voxgi_fuzz_targets
   # Leak checking needs ptrace, which some containers forbid; memory errors and undefined
   # behaviour are what this stage is for (ASAN_OPTIONS=detect_leaks=1 locally to add leaks).
   for test in "${sanitized_tests[@]}"; do

@@ -97,6 +97,25 @@ float scene_texture_lod = 0.0;  // with SCENE_TEXTURE_EXPLICIT_LOD
 
 uint scene_light_count() { return scene_lights_count; }
 
+// KHR_lights_punctual's falloff of a point or spot light besides 1/d^2: the range window and the
+// spot cone, at distance d from the light along the unit direction from_light (light to point).
+// 1 for directional lights.
+float scene_light_falloff(SceneLight light, float d, vec3 from_light) {
+  if (light.type == SCENE_LIGHT_DIRECTIONAL) return 1.0;
+  float falloff = 1.0;
+  if (light.range > 0.0) {
+    float r = d / light.range;
+    falloff *= clamp(1.0 - r * r * r * r, 0.0, 1.0);
+  }
+  if (light.type == SCENE_LIGHT_SPOT) {
+    float len = length(light.direction);
+    vec3 axis = len > 1e-20 ? light.direction / len : vec3(0.0, -1.0, 0.0);
+    float s = clamp(dot(axis, from_light) * light.spot_scale + light.spot_offset, 0.0, 1.0);
+    falloff *= s * s;
+  }
+  return falloff;
+}
+
 // World-space tangent (xyz) and handedness (w) of a vertex tangent under an instance.
 vec4 scene_world_tangent(SceneInstance instance, vec4 tangent) {
   float w = (instance.flags & SCENE_INSTANCE_MIRRORED) != 0u ? -tangent.w : tangent.w;

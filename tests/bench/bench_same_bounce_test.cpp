@@ -55,6 +55,14 @@ TEST(BenchSameBounce, DvsFollowsItsBounceParameter) {
   }
 }
 
+TEST(BenchSameBounce, LpvDeclaresOneDiffuseBounce) {
+  const graph::GraphDesc lpv = graph::load_graph_file(kRepo / "graphs" / "lpv.json");
+  const std::optional<IndirectModel> model = indirect_model_of(lpv, parameters_of(lpv));
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->bounces, 1u);
+  EXPECT_TRUE(model->diffuse_only);
+}
+
 TEST(BenchSameBounce, GraphsWithoutADeclarationHaveNone) {
   for (const char* file : {"default.json", "reference.json"}) {
     const graph::GraphDesc desc = graph::load_graph_file(kRepo / "graphs" / file);

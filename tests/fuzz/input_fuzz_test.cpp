@@ -83,7 +83,7 @@ TEST(InputFuzz, GraphFilesParseAndCompileOrAreRefused) {
   options.viewport_height = 64;
   options.scene_features = cornell.features().as_map();
   std::vector<std::string> seeds;
-  for (const char* file : {"default.json", "vct.json", "dvs.json", "reference.json"}) {
+  for (const char* file : {"default.json", "vct.json", "dvs.json", "lpv.json", "reference.json"}) {
     seeds.push_back(read(kRepo / "graphs" / file));
   }
   fuzz("graph", seeds, 1, [&](const std::string& text) {

@@ -1,0 +1,159 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// lpv.inject: virtual point lights into the LPV cells (seed 002 sec. 3.2.2; docs/lpv.md).
+// Each reflective-shadow-map texel, taken every `stride` texels, is a Lambertian emitter of
+// flux Phi = stride^2 x its texel's flux (the injected texel stands for stride^2 texels: the
+// solid angle is that of the injected resolution), radiant intensity (Phi / pi) max(0, n.w),
+// placed half a cell along its normal, into the cell that holds it on every level whose window
+// contains it. Emissive voxels inject pi x L_e x (voxel edge)^2 the same way, on their own
+// level. Sums are fixed point (shaders/lpv/cells.glsl), so the result does not depend on the
+// order threads run in.
+//
+// MODE 0: clears the buffer and writes the header's contribution count.
+// MODE 1: the largest coefficient magnitude of any contribution (atomicMax on float bits,
+//         which order non-negative floats).
+// MODE 2: the RSM texels.  MODE 3: the emissive voxels.
+#include "lib/common.glsl"
+#include "lpv/sh.glsl"
+#define VOXEL_CLIPMAP_SET 0
+#define VOXEL_CLIPMAP_BINDING 0
+#include "contracts/voxel_clipmap.glsl"
+#include "contracts/voxel_volumes.glsl"
+#include "lpv/cells.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(set = 0, binding = 1) uniform sampler2DArray rsm_flux;
+layout(set = 0, binding = 2) uniform sampler2DArray rsm_normal;
+layout(set = 0, binding = 3) uniform sampler2DArray rsm_position;
+layout(set = 0, binding = 4, std430) buffer Injected {
+  uint max_magnitude_bits;
+  uint contributions;
+  uint pad0;
+  uint pad1;
+  int coefficients[];
+} injected;
+#if HAS_EMISSION
+layout(set = 0, binding = 5) uniform sampler3D voxel_normal;
+layout(set = 0, binding = 6) uniform sampler3D voxel_emission;
+#endif
+
+layout(push_constant) uniform Push {
+  uint mode;
+  uint stride;         // RSM texels between injected ones
+  uint injected_edge;  // RSM edge / stride
+  uint layers;         // RSM layers
+  uint contributions;  // upper bound on the contributions to one coefficient
+  uint words;          // the buffer's coefficient count (cells x 12)
+  float normal_offset; // cells
+  uint pad;
+} pc;
+
+struct Vpl {
+  vec3 position;  // anchor-relative
+  vec3 normal;
+  vec3 flux;
+  bool valid;
+};
+
+Vpl rsm_vpl(uint index) {
+  uint e = pc.injected_edge;
+  uint layer = index / (e * e);
+  uint i = index % (e * e);
+  ivec3 texel = ivec3(ivec2(i % e, i / e) * int(pc.stride) + int(pc.stride / 2u), int(layer));
+  Vpl v;
+  vec4 p = texelFetch(rsm_position, texel, 0);
+  v.valid = layer < pc.layers && p.w > 0.5;
+  v.position = voxel_relative(p.xyz);
+  v.normal = safe_normalize(texelFetch(rsm_normal, texel, 0).xyz, vec3(0.0, 1.0, 0.0));
+  v.flux = max(texelFetch(rsm_flux, texel, 0).rgb, vec3(0.0)) * float(pc.stride * pc.stride);
+  v.valid = v.valid && all(lessThan(v.flux, vec3(3.0e38))) && max(v.flux.r, max(v.flux.g, v.flux.b)) > 0.0;
+  return v;
+}
+
+#if HAS_EMISSION
+// An emissive voxel on its own level; position is its surface point.
+Vpl emission_vpl(uint index, out int level) {
+  ivec4 c = lpv_cell_coords(index);
+  level = c.w;
+  Vpl v;
+  v.valid = false;
+  if (level >= voxel_level_count() || !voxel_level_valid(level)) return v;
+  ivec3 t = voxel_texel(c.xyz, level);
+  vec4 n = texelFetch(voxel_normal, t, 0);
+  vec3 le = max(texelFetch(voxel_emission, t, 0).rgb, vec3(0.0));
+  float s = voxel_size(level);
+  if (!voxel_normal_occupied(n) || max(le.r, max(le.g, le.b)) <= 0.0) return v;
+  float len = length(n.xyz);
+  // A voxel whose faces cancelled has no side to emit from; it is skipped.
+  if (!(len > 0.25)) return v;
+  v.normal = n.xyz / len;
+  v.position = voxel_level_min(level) + (vec3(c.xyz) + 0.5 + voxel_plane_offset(n) * v.normal) * s;
+  v.flux = SH_PI * le * s * s;
+  v.valid = true;
+  return v;
+}
+#endif
+
+float magnitude(Vpl v) { return max(v.flux.r, max(v.flux.g, v.flux.b)) / SH_PI * SH_COSINE_1; }
+
+void add(int cell, Vpl v, float scale) {
+  vec4 lobe = sh_clamped_cosine(v.normal) / SH_PI;
+  for (int ch = 0; ch < 3; ++ch) {
+    vec4 c = lobe * v.flux[ch] * scale;
+    int base = cell * 12 + ch * 4;
+    for (int k = 0; k < 4; ++k) {
+      int q = int(round(c[k]));
+      if (q != 0) atomicAdd(injected.coefficients[base + k], q);
+    }
+  }
+}
+
+void inject(Vpl v, int first_level, int last_level) {
+  float scale = lpv_fixed_point_scale(injected.max_magnitude_bits, injected.contributions);
+  if (scale <= 0.0) return;
+  for (int level = first_level; level <= last_level; ++level) {
+    if (!voxel_level_valid(level)) continue;
+    float s = voxel_size(level);
+    vec3 c = voxel_window_coord(v.position + v.normal * (pc.normal_offset * s), level);
+    ivec3 cell = ivec3(floor(c));
+    if (!lpv_inside(cell)) continue;
+    add(lpv_cell(cell, level), v, scale);
+  }
+}
+
+void main() {
+  uint index = gl_GlobalInvocationID.x;
+  if (pc.mode == 0u) {
+    if (index < pc.words) injected.coefficients[index] = 0;
+    if (index == 0u) {
+      injected.max_magnitude_bits = 0u;
+      injected.contributions = pc.contributions;
+    }
+    return;
+  }
+  bool from_rsm = pc.mode == 1u ? index < pc.injected_edge * pc.injected_edge * pc.layers
+                                : pc.mode == 2u;
+  Vpl v;
+  int level = 0;
+  if (from_rsm) {
+    if (index >= pc.injected_edge * pc.injected_edge * pc.layers) return;
+    v = rsm_vpl(index);
+  } else {
+#if HAS_EMISSION
+    uint voxel = pc.mode == 1u ? index - pc.injected_edge * pc.injected_edge * pc.layers : index;
+    if (voxel >= uint(lpv_cell_total())) return;
+    v = emission_vpl(voxel, level);
+#else
+    return;
+#endif
+  }
+  if (!v.valid) return;
+  if (pc.mode == 1u) {
+    atomicMax(injected.max_magnitude_bits, floatBitsToUint(magnitude(v)));
+  } else if (from_rsm) {
+    inject(v, 0, voxel_level_count() - 1);
+  } else {
+    inject(v, level, level);
+  }
+}

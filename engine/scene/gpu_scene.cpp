@@ -316,7 +316,7 @@ void GpuScene::upload_textures(const Scene& scene) {
     assign(m.normal_tex, false);
     assign(m.occlusion_tex, false);
   }
-  texture_sampler_ = context_->sampler(gpu::SamplerKind::LinearRepeatMipmapped);
+  texture_sampler_ = context_->sampler(gpu::SamplerKind::SceneTexture);
   auto build = [&](const std::vector<int>& members, bool srgb) {
     uint32_t width = 1, height = 1, bits = 8;
     for (int tex : members) {
@@ -535,6 +535,19 @@ std::vector<VkVertexInputAttributeDescription> GpuScene::vertex_attributes() {
 
 VkVertexInputBindingDescription GpuScene::vertex_binding() {
   return {0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+}
+
+void GpuScene::record_draws(VkCommandBuffer cmd,
+                            const std::function<bool(const Draw&)>& keep) const {
+  if (draws_.empty()) return;
+  VkDeviceSize offset = 0;
+  VkBuffer vertex_buffer = vertices_->handle();
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+  vkCmdBindIndexBuffer(cmd, indices_->handle(), 0, VK_INDEX_TYPE_UINT32);
+  for (const Draw& draw : draws_) {
+    if (keep && !keep(draw)) continue;
+    vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, draw.instance);
+  }
 }
 
 }  // namespace voxgi::scene

@@ -48,7 +48,8 @@ TEST_F(ContextTest, SamplersAreCachedPerKind) {
   const gpu::SamplerKind kinds[] = {
       gpu::SamplerKind::LinearClamp,          gpu::SamplerKind::LinearRepeat,
       gpu::SamplerKind::NearestClamp,         gpu::SamplerKind::ShadowCompare,
-      gpu::SamplerKind::LinearClampMipmapped, gpu::SamplerKind::LinearRepeatMipmapped};
+      gpu::SamplerKind::LinearClampMipmapped, gpu::SamplerKind::LinearRepeatMipmapped,
+      gpu::SamplerKind::SceneTexture};
   std::vector<VkSampler> seen;
   for (auto kind : kinds) {
     VkSampler sampler = gpu.sampler(kind);

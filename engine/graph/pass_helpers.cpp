@@ -17,6 +17,17 @@ SlotSpec sampled_2d_input(const char* name, const char* doc, bool optional,
           doc};
 }
 
+SlotSpec sampled_clipmap_input(const char* name, const char* doc, bool optional,
+                               std::vector<VkFormat> formats) {
+  return {name,
+          kinds(ResourceKind::Clipmap),
+          Access::Sampled,
+          kStageCompute,
+          std::move(formats),
+          optional,
+          doc};
+}
+
 std::vector<uint32_t> compile_pass_shader(const PassContext& ctx, const std::string& path,
                                           std::vector<gpu::ShaderDefine> defines) {
   gpu::ShaderRequest request;

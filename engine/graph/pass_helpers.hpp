@@ -30,6 +30,10 @@ gpu::ComputePipeline make_pass_compute(const PassContext& ctx, const std::string
 SlotSpec sampled_2d_input(const char* name, const char* doc, bool optional = false,
                           std::vector<VkFormat> formats = {});
 
+// A clipmap read through a sampler in compute (any format unless `formats` is given).
+SlotSpec sampled_clipmap_input(const char* name, const char* doc, bool optional = false,
+                               std::vector<VkFormat> formats = {});
+
 // A bound resource's extent at the mip its slot is bound to.
 VkExtent3D bound_extent(const ResourceInfo& info);
 

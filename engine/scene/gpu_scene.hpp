@@ -12,6 +12,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -141,6 +142,10 @@ class GpuScene {
   const gpu::Buffer& lights() const { return *lights_; }
   // Opaque and masked draws first, then blended ones.
   const std::vector<Draw>& draws() const { return draws_; }
+  // Binds vertices() and indices() and records one indexed draw per entry of draws() that
+  // `keep` accepts (all when it is empty), with the pipeline and descriptors already bound.
+  void record_draws(VkCommandBuffer cmd,
+                    const std::function<bool(const Draw&)>& keep = nullptr) const;
   VkDescriptorSetLayout set_layout() const { return set_layout_; }
   VkDescriptorSet descriptor_set() const { return set_; }
   uint32_t light_count() const { return static_cast<uint32_t>(gpu_lights_.size()); }

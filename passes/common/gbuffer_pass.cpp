@@ -82,10 +82,7 @@ class GbufferPass final : public graph::Pass {
     const scene::GpuScene& scene = ctx.gpu_scene();
     if (!scene.draws().empty()) {
       gpu::GraphicsPipeline::set_viewport(cmd, width, height);
-      VkDeviceSize offset = 0;
-      VkBuffer vertices = scene.vertices().handle();
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
-      vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
+      const bool cull_back_faces = ctx.flag("cull_back_faces");
       for (const gpu::GraphicsPipeline* pipeline : {&*single_sided_, &*double_sided_}) {
         const bool double_sided_pipeline = pipeline == &*double_sided_;
         pipeline->bind(cmd);
@@ -95,12 +92,9 @@ class GbufferPass final : public graph::Pass {
         VkDescriptorSet scene_set = scene.descriptor_set();
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline->layout(), 1, 1,
                                 &scene_set, 0, nullptr);
-        for (const scene::GpuScene::Draw& draw : scene.draws()) {
-          const bool wants_double_sided = draw.double_sided || !ctx.flag("cull_back_faces");
-          if (wants_double_sided != double_sided_pipeline) continue;
-          vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset,
-                           draw.instance);
-        }
+        scene.record_draws(cmd, [&](const scene::GpuScene::Draw& draw) {
+          return (draw.double_sided || !cull_back_faces) == double_sided_pipeline;
+        });
       }
     }
     vkCmdEndRendering(cmd);

@@ -192,14 +192,7 @@ class ShadowMapsPass final : public graph::Pass {
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_->layout(), 1, 1,
                               &scene_set, 0, nullptr);
       pipeline_->push_constants(cmd, push);
-      VkDeviceSize offset = 0;
-      VkBuffer vertices = scene.vertices().handle();
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
-      vkCmdBindIndexBuffer(cmd, scene.indices().handle(), 0, VK_INDEX_TYPE_UINT32);
-      for (const scene::GpuScene::Draw& draw : scene.draws()) {
-        vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset,
-                         draw.instance);
-      }
+      scene.record_draws(cmd);
     }
     vkCmdEndRendering(cmd);
   }

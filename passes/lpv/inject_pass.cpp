@@ -31,15 +31,9 @@ struct InjectPush {
 
 constexpr uint32_t kLocal = 64;
 
-graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional) {
-  return {name,
-          graph::kinds(graph::ResourceKind::Clipmap),
-          graph::Access::Sampled,
-          graph::kStageCompute,
-          {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT},
-          optional,
-          doc};
-}
+// Voxel normal and emission are read as floating-point RGBA.
+const std::vector<VkFormat> kFloatRgba = {VK_FORMAT_R16G16B16A16_SFLOAT,
+                                          VK_FORMAT_R32G32B32A32_SFLOAT};
 
 class InjectPass final : public graph::Pass {
  public:
@@ -135,11 +129,13 @@ void register_inject(graph::Registry& registry) {
                               {kRsmNormalFormat, VK_FORMAT_R32G32B32A32_SFLOAT}),
       graph::sampled_2d_input("rsm_position", "lpv.rsm's world positions", false,
                               {kRsmPositionFormat}),
-      sampled_clipmap("voxel_normal",
-                      "voxel normals: the LPV has one cell per voxel of this clipmap, and "
-                      "emissive voxels emit along them",
-                      false),
-      sampled_clipmap("emission", "voxel emitted radiance; unbound: no emitters inject", true),
+      graph::sampled_clipmap_input(
+          "voxel_normal",
+          "voxel normals: the LPV has one cell per voxel of this clipmap, and "
+          "emissive voxels emit along them",
+          false, kFloatRgba),
+      graph::sampled_clipmap_input(
+          "emission", "voxel emitted radiance; unbound: no emitters inject", true, kFloatRgba),
   };
   info.outputs = {{"injected",
                    graph::kinds(graph::ResourceKind::Buffer),

@@ -100,17 +100,6 @@ class PropagatePass final : public graph::Pass {
   graph::InputVersions versions_{{"clipmap_info", "injected", "albedo", "normal"}};
 };
 
-graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional,
-                                std::vector<VkFormat> formats) {
-  return {name,
-          graph::kinds(graph::ResourceKind::Clipmap),
-          graph::Access::Sampled,
-          graph::kStageCompute,
-          std::move(formats),
-          optional,
-          doc};
-}
-
 }  // namespace
 
 void register_propagate(graph::Registry& registry) {
@@ -128,10 +117,11 @@ void register_propagate(graph::Registry& registry) {
        {},
        false,
        "lpv.inject's fixed-point intensities"},
-      sampled_clipmap("albedo", "voxel opacity (a): the LPV has one cell per voxel of this clipmap",
-                      false, {contracts::kVoxelAlbedoFormat, VK_FORMAT_R16G16B16A16_SFLOAT}),
-      sampled_clipmap("normal", "voxel normals, for the blocking potential", false,
-                      {contracts::kVoxelNormalFormat, VK_FORMAT_R32G32B32A32_SFLOAT}),
+      graph::sampled_clipmap_input(
+          "albedo", "voxel opacity (a): the LPV has one cell per voxel of this clipmap", false,
+          {contracts::kVoxelAlbedoFormat, VK_FORMAT_R16G16B16A16_SFLOAT}),
+      graph::sampled_clipmap_input("normal", "voxel normals, for the blocking potential", false,
+                                   {contracts::kVoxelNormalFormat, VK_FORMAT_R32G32B32A32_SFLOAT}),
   };
   info.outputs = {
       {"radiance",

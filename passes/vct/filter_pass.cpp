@@ -149,11 +149,12 @@ void register_filter(graph::Registry& registry) {
       "Filters the radiance clipmap into the cone tracer's volumes: premultiplied radiance and "
       "opacity with per-level mips, levels kept consistent; isotropic or six anisotropic "
       "directions";
-  info.inputs = {contracts::clipmap_info_input(),
-                 sampled_clipmap("radiance",
-                                 "radiance clipmap (rgb outgoing radiance, a opacity) from "
-                                 "vct.inject or dvs.voxel_lighting; only mip 0 is read",
-                                 false, {VK_FORMAT_R16G16B16A16_SFLOAT})};
+  info.inputs = {
+      contracts::clipmap_info_input(),
+      graph::sampled_clipmap_input("radiance",
+                                   "radiance clipmap (rgb outgoing radiance, a opacity) from "
+                                   "vct.inject or dvs.voxel_lighting; only mip 0 is read",
+                                   false, {VK_FORMAT_R16G16B16A16_SFLOAT})};
   info.outputs = {filtered_output("filtered", "isotropic filtered volume (mode isotropic)")};
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   for (size_t i = 0; i < contracts::kDirectionalSlots.size(); ++i) {

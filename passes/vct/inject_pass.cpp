@@ -107,10 +107,12 @@ void register_inject(graph::Registry& registry) {
       "visibility per voxel, plus emission";
   info.inputs = {
       contracts::clipmap_info_input(),
-      sampled_clipmap("albedo", "voxel albedo (rgb linear) and opacity (a)", false, kFloatRgba),
-      sampled_clipmap("normal", "voxel averaged normal (xyz; ~0 where faces cancel)", false,
-                      kFloatRgba),
-      sampled_clipmap("emission", "voxel emitted radiance (rgb); unbound: none", true, kFloatRgba),
+      graph::sampled_clipmap_input("albedo", "voxel albedo (rgb linear) and opacity (a)", false,
+                                   kFloatRgba),
+      graph::sampled_clipmap_input("normal", "voxel averaged normal (xyz; ~0 where faces cancel)",
+                                   false, kFloatRgba),
+      graph::sampled_clipmap_input("emission", "voxel emitted radiance (rgb); unbound: none", true,
+                                   kFloatRgba),
       contracts::shadow_maps_input("from common.shadow_maps; unbound: lights are unshadowed"),
       contracts::shadow_matrices_input("from common.shadow_maps"),
   };

@@ -2,17 +2,6 @@
 
 namespace voxgi::passes::vct {
 
-graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional,
-                                std::vector<VkFormat> formats) {
-  return {name,
-          graph::kinds(graph::ResourceKind::Clipmap),
-          graph::Access::Sampled,
-          graph::kStageCompute,
-          std::move(formats),
-          optional,
-          doc};
-}
-
 std::string unbound_directional_slots(const graph::PassDeclaration& pass) {
   std::string missing;
   for (const char* slot : contracts::kDirectionalSlots) {

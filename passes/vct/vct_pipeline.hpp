@@ -1,5 +1,5 @@
 #pragma once
-// Helpers the vct passes share: slot declarations and checks of the filtered volume slots
+// Helpers the vct passes share: checks of the filtered volume slots
 // (their names and sampler: passes/contracts/filtered_volumes.hpp; shaders, compute pipelines
 // and input versions: engine/graph/pass_helpers.hpp).
 
@@ -11,10 +11,6 @@
 #include "passes/contracts/filtered_volumes.hpp"
 
 namespace voxgi::passes::vct {
-
-// Slot declarations (compute stage).
-graph::SlotSpec sampled_clipmap(const char* name, const char* doc, bool optional,
-                                std::vector<VkFormat> formats);
 
 // The directional slots left unbound, comma-separated; empty when all six are bound.
 std::string unbound_directional_slots(const graph::PassDeclaration& pass);

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "engine/gpu/buffer.hpp"
-#include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/shader_compiler.hpp"
 #include "passes/contracts/shadow_data.hpp"
 #include "passes/contracts/voxel_clipmap.hpp"
+#include "tests/gpu/buffer_probe.hpp"
 #include "tests/gpu/gpu_test_env.hpp"
 #include "tests/gpu/shader_files.hpp"
 
@@ -35,22 +35,8 @@ class ContractsTest : public GpuTest {
                        gpu::MemoryUsage::GpuOnly, name);
   }
 
-  // Runs one invocation of `probe` with storage buffers `input` (binding 0) and `output`
-  // (binding 1) and a uint push constant.
   void run_probe(const char* probe, gpu::Buffer& input, gpu::Buffer& output, uint32_t count) {
-    gpu::PipelineLayoutDesc layout;
-    layout.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
-    layout.push_constant_size = sizeof(uint32_t);
-    layout.push_constant_stages = VK_SHADER_STAGE_COMPUTE_BIT;
-    gpu::ComputePipeline pipeline(context(), compiler_.compile({probe}), layout, probe);
-    context().immediate_submit([&](VkCommandBuffer cmd) {
-      pipeline.bind(cmd);
-      gpu::DescriptorWriter().storage_buffer(0, input).storage_buffer(1, output).push(
-          cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout());
-      pipeline.push_constants(cmd, count);
-      vkCmdDispatch(cmd, 1, 1, 1);
-    });
+    run_buffer_probe(compiler_, probe, input, output, count);
   }
 };
 

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "engine/gpu/buffer.hpp"
-#include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/shader_compiler.hpp"
 #include "passes/lpv/rsm_views.hpp"
+#include "tests/gpu/buffer_probe.hpp"
 #include "tests/gpu/gpu_test_env.hpp"
 
 namespace voxgi::test {
@@ -60,20 +60,7 @@ class LpvShTest : public GpuTest {
     gpu::Buffer output(context(), count * 5 * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                        gpu::MemoryUsage::GpuOnly, "test.sh_results");
     input.upload_vector(directions);
-    gpu::PipelineLayoutDesc layout;
-    layout.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
-    layout.push_constant_size = sizeof(uint32_t);
-    layout.push_constant_stages = VK_SHADER_STAGE_COMPUTE_BIT;
-    gpu::ComputePipeline pipeline(context(), compiler.compile({"sh_probe.comp"}), layout,
-                                  "sh_probe");
-    context().immediate_submit([&](VkCommandBuffer cmd) {
-      pipeline.bind(cmd);
-      gpu::DescriptorWriter().storage_buffer(0, input).storage_buffer(1, output).push(
-          cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout());
-      pipeline.push_constants(cmd, count);
-      vkCmdDispatch(cmd, 1, 1, 1);
-    });
+    run_buffer_probe(compiler, "sh_probe.comp", input, output, count);
     return output.download_vector<glm::vec4>(count * 5);
   }
 };

@@ -100,16 +100,7 @@ void main() {
       float d2 = max(dot(to_light, to_light), 1e-8);
       distance_to_light = sqrt(d2);
       l = to_light / distance_to_light;
-      attenuation = 1.0 / d2;
-      if (light.range > 0.0) {
-        float r = distance_to_light / light.range;
-        attenuation *= clamp(1.0 - r * r * r * r, 0.0, 1.0);
-      }
-      if (light.type == SCENE_LIGHT_SPOT) {
-        float cd = dot(safe_normalize(light.direction, vec3(0.0, -1.0, 0.0)), -l);
-        float s = clamp(cd * light.spot_scale + light.spot_offset, 0.0, 1.0);
-        attenuation *= s * s;
-      }
+      attenuation = scene_light_falloff(light, distance_to_light, -l) / d2;
     }
     if (attenuation <= 0.0 || dot(n, l) <= 0.0) continue;
     float visibility = 1.0;

@@ -109,16 +109,7 @@ void main() {
         float d2 = max(dot(to_light, to_light), 0.25 * size * size);
         float d = sqrt(d2);
         l = safe_normalize(to_light, vec3(0.0, 1.0, 0.0));
-        attenuation = 1.0 / d2;
-        if (light.range > 0.0) {
-          float r = d / light.range;
-          attenuation *= clamp(1.0 - r * r * r * r, 0.0, 1.0);
-        }
-        if (light.type == SCENE_LIGHT_SPOT) {
-          float cd = dot(safe_normalize(light.direction, vec3(0.0, -1.0, 0.0)), -l);
-          float s = clamp(cd * light.spot_scale + light.spot_offset, 0.0, 1.0);
-          attenuation *= s * s;
-        }
+        attenuation = scene_light_falloff(light, d, -l) / d2;
         max_t = d - 0.5 * size;
         distance_to_light = d;
       }

@@ -108,8 +108,8 @@ float scene_light_falloff(SceneLight light, float d, vec3 from_light) {
     falloff *= clamp(1.0 - r * r * r * r, 0.0, 1.0);
   }
   if (light.type == SCENE_LIGHT_SPOT) {
-    float len = length(light.direction);
-    vec3 axis = len > 1e-20 ? light.direction / len : vec3(0.0, -1.0, 0.0);
+    float len2 = dot(light.direction, light.direction);
+    vec3 axis = len2 > 1e-20 ? light.direction * inversesqrt(len2) : vec3(0.0, -1.0, 0.0);
     float s = clamp(dot(axis, from_light) * light.spot_scale + light.spot_offset, 0.0, 1.0);
     falloff *= s * s;
   }

@@ -108,16 +108,7 @@ void main() {
       float d = sqrt(d2);
       distance_to_light = d;
       l = to_light / d;
-      attenuation = 1.0 / d2;
-      if (light.range > 0.0) {
-        float q = d / light.range;
-        attenuation *= clamp(1.0 - q * q * q * q, 0.0, 1.0);
-      }
-      if (light.type == SCENE_LIGHT_SPOT) {
-        float cd = dot(safe_normalize(light.direction, vec3(0.0, -1.0, 0.0)), -l);
-        float s = clamp(cd * light.spot_scale + light.spot_offset, 0.0, 1.0);
-        attenuation *= s * s;
-      }
+      attenuation = scene_light_falloff(light, d, -l) / d2;
     }
     float cos_theta = has_normal ? dot(n, l) : 1.0;
     if (attenuation <= 0.0 || cos_theta <= 0.0) continue;

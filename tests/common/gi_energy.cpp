@@ -362,7 +362,7 @@ RenderSetup voxel_gi_render_setup(const VoxelGiSetup& gi, const scene::Scene& sc
   setup.height = size;
   setup.overrides = gi.overrides;
   setup.overrides["voxel.resolution"] = std::to_string(gi.voxel_resolution);
-  setup.overrides["voxel.levels"] = "1";
+  setup.overrides["voxel.levels"] = std::to_string(gi.voxel_levels);
   return setup;
 }
 

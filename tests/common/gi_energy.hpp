@@ -186,6 +186,7 @@ scene::Scene cornell_lit_by_its_point_light();
 struct VoxelGiSetup {
   std::string graph;
   uint32_t voxel_resolution = 64;
+  uint32_t voxel_levels = 1;  // above 1: a clipmap around the camera (cascades)
   std::map<std::string, std::string> overrides;
   int indirect_bounces = 1;
   std::string label;

@@ -187,6 +187,12 @@ void Scene::bounds(glm::vec3& mn, glm::vec3& mx) const {
   if (!any) mn = mx = glm::vec3(0.0f);
 }
 
+BoundingSphere Scene::bounding_sphere() const {
+  glm::vec3 mn, mx;
+  bounds(mn, mx);
+  return {0.5f * (mn + mx), std::max(0.5f * glm::length(mx - mn), 1e-3f)};
+}
+
 SceneFeatures Scene::features() const {
   SceneFeatures f;
   const std::vector<Instance> all = instances();

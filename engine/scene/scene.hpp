@@ -185,6 +185,11 @@ struct SceneFeatures {
   std::map<std::string, double> as_map() const;
 };
 
+struct BoundingSphere {
+  glm::vec3 center{0.0f};
+  float radius = 1e-3f;
+};
+
 struct Scene {
   std::string name;
   std::string source;  // file path or "builtin:<name>"
@@ -205,6 +210,9 @@ struct Scene {
   std::vector<Instance> instances() const;
   // World-space bounds over all instances' vertices; (0,0,0) both when there are none.
   void bounds(glm::vec3& mn, glm::vec3& mx) const;
+  // The sphere around bounds(), radius at least 1 mm (what lights' cameras are fitted to).
+  // Walks every vertex, as bounds() does.
+  BoundingSphere bounding_sphere() const;
   SceneFeatures features() const;
   const Camera* find_camera(std::string_view camera_name) const;
 };

@@ -29,31 +29,20 @@ using contracts::ShadowLight;
 using graph::Access;
 using graph::ResourceKind;
 
-struct SceneSphere {
-  glm::vec3 center;
-  float radius;
-};
-
-SceneSphere bounding_sphere(const scene::Scene& scene) {
-  glm::vec3 mn, mx;
-  scene.bounds(mn, mx);
-  const float radius = 0.5f * glm::length(mx - mn);
-  return {0.5f * (mn + mx), std::max(radius, 1e-3f)};
-}
-
 glm::vec3 up_for(const glm::vec3& direction) {
   return std::abs(direction.y) > 0.99f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
 }
 
 // Near and far planes for a perspective shadow from `position` that covers the whole scene.
-void perspective_range(const SceneSphere& sphere, const glm::vec3& position, float& znear,
+void perspective_range(const scene::BoundingSphere& sphere, const glm::vec3& position, float& znear,
                        float& zfar) {
   zfar = glm::length(sphere.center - position) + sphere.radius;
   zfar = std::max(zfar, 1e-3f) * 1.01f;
   znear = std::max(zfar * 1e-4f, 1e-5f);
 }
 
-ShadowLight shadow_for(const scene::Light& light, const SceneSphere& sphere, float resolution) {
+ShadowLight shadow_for(const scene::Light& light, const scene::BoundingSphere& sphere,
+                       float resolution) {
   ShadowLight shadow{};
   const glm::vec3 dir = glm::normalize(light.direction);
   if (light.type == scene::LightType::Directional) {
@@ -141,9 +130,9 @@ class ShadowMapsPass final : public graph::Pass {
     const scene::Scene& scene = ctx.scene();
     // The bounds walk every vertex: redo it only when geometry moved, not when only lights did.
     if (!sphere_ || ctx.frame().first_frame || ctx.frame().geometry_changed) {
-      sphere_ = bounding_sphere(scene);
+      sphere_ = scene.bounding_sphere();
     }
-    const SceneSphere sphere = *sphere_;
+    const scene::BoundingSphere sphere = *sphere_;
     const float resolution = static_cast<float>(maps.extent.width);
     std::vector<ShadowLight> shadows(std::max<uint32_t>(slots, 1));
     for (uint32_t i = 0; i < slots && i < scene.lights.size(); ++i) {
@@ -198,7 +187,7 @@ class ShadowMapsPass final : public graph::Pass {
   }
 
   std::optional<gpu::GraphicsPipeline> pipeline_;
-  std::optional<SceneSphere> sphere_;
+  std::optional<scene::BoundingSphere> sphere_;
 };
 
 }  // namespace

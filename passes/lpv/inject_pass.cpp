@@ -164,12 +164,12 @@ void register_inject(graph::Registry& registry) {
        "002: 0.5); 1 puts it in the next cell, so its surface's own cell cannot stop its light",
        true},
   };
-  graph::set_size_rule(info, "injected", injected_buffer_size("voxel_normal"));
+  graph::set_size_rule(info, "injected", lpv_buffer_size(LpvBuffer::Injected, "voxel_normal"));
   info.may_skip = true;
   info.validate = [](graph::PassCheck& check) {
     contracts::check_clipmap_info_size(check);
     graph::check_same_clipmap_layout(check, "voxel_normal", {"emission"});
-    check_injected_buffer(check, "injected", "voxel_normal");
+    check_lpv_buffer(check, LpvBuffer::Injected, "injected", "voxel_normal");
   };
   registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });
 }

@@ -27,8 +27,6 @@ struct PropagatePush {
 };
 
 constexpr uint32_t kLocal = 4;
-// Two states and the geometry volume, in units of one SH buffer (lpv/propagate.comp).
-constexpr uint32_t kWorkCopies = 3;
 
 class PropagatePass final : public graph::Pass {
  public:
@@ -179,15 +177,15 @@ void register_propagate(graph::Registry& registry) {
        "block propagation by the voxels' geometry volume",
        false},
   };
-  graph::set_size_rule(info, "radiance", radiance_buffer_size("albedo"));
-  graph::set_size_rule(info, "work", sh_buffer_size("albedo", kWorkCopies));
+  graph::set_size_rule(info, "radiance", lpv_buffer_size(LpvBuffer::Radiance, "albedo"));
+  graph::set_size_rule(info, "work", lpv_buffer_size(LpvBuffer::Work, "albedo"));
   info.may_skip = true;
   info.validate = [](graph::PassCheck& check) {
     contracts::check_clipmap_info_size(check);
     graph::check_same_clipmap_layout(check, "albedo", {"normal"});
-    check_injected_buffer(check, "injected", "albedo");
-    check_radiance_buffer(check, "radiance", "albedo");
-    check_sh_buffer(check, "work", "albedo", kWorkCopies);
+    check_lpv_buffer(check, LpvBuffer::Injected, "injected", "albedo");
+    check_lpv_buffer(check, LpvBuffer::Radiance, "radiance", "albedo");
+    check_lpv_buffer(check, LpvBuffer::Work, "work", "albedo");
   };
   registry.add(std::move(info), [] { return std::make_unique<PropagatePass>(); });
 }

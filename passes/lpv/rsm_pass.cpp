@@ -69,7 +69,7 @@ class RsmPass final : public graph::Pass {
   void execute(graph::PassContext& ctx) override {
     const scene::Scene& scene = ctx.scene();
     if (!sphere_ || ctx.frame().first_frame || ctx.frame().geometry_changed) {
-      sphere_ = scene_bounding_sphere(scene);
+      sphere_ = scene.bounding_sphere();
     }
     const graph::ResourceInfo& flux = ctx.info("flux");
     const uint32_t resolution = flux.extent.width;
@@ -77,20 +77,21 @@ class RsmPass final : public graph::Pass {
     const uint32_t slots = std::min<uint32_t>({layers / kRsmFacesPerLight,
                                                static_cast<uint32_t>(ctx.integer("max_lights")),
                                                static_cast<uint32_t>(scene.lights.size())});
-    for (uint32_t layer = 0; layer < layers; ++layer) {
-      const uint32_t light = layer / kRsmFacesPerLight;
-      const uint32_t face = layer % kRsmFacesPerLight;
-      std::optional<RsmPush> push;
-      if (light < slots) {
-        const std::vector<RsmView> views = rsm_views(scene.lights[light], *sphere_);
+    // Every layer is cleared; those of a light present also get its views.
+    for (uint32_t light = 0; light * kRsmFacesPerLight < layers; ++light) {
+      const std::vector<RsmView> views =
+          light < slots ? rsm_views(scene.lights[light], *sphere_) : std::vector<RsmView>{};
+      for (uint32_t face = 0; face < kRsmFacesPerLight; ++face) {
+        if (light * kRsmFacesPerLight + face >= layers) break;
+        std::optional<RsmPush> push;
         if (face < views.size()) {
           const RsmView& v = views[face];
           push = RsmPush{v.view_proj, glm::vec4(v.origin, static_cast<float>(light)),
                          glm::vec4(v.perspective ? 1.0f : 0.0f, v.extent,
                                    static_cast<float>(resolution), 0.0f)};
         }
+        render_layer(ctx, light * kRsmFacesPerLight + face, resolution, push);
       }
-      render_layer(ctx, layer, resolution, push);
     }
   }
 
@@ -138,7 +139,7 @@ class RsmPass final : public graph::Pass {
   }
 
   std::optional<gpu::GraphicsPipeline> pipeline_;
-  std::optional<SceneSphere> sphere_;
+  std::optional<scene::BoundingSphere> sphere_;
 };
 
 graph::SlotSpec rsm_target(const char* name, VkFormat format, const char* doc) {

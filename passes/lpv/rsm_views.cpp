@@ -20,13 +20,7 @@ double corner_solid_angle(double x, double y) {
 
 }  // namespace
 
-SceneSphere scene_bounding_sphere(const scene::Scene& scene) {
-  glm::vec3 mn, mx;
-  scene.bounds(mn, mx);
-  return {0.5f * (mn + mx), std::max(0.5f * glm::length(mx - mn), 1e-3f)};
-}
-
-std::vector<RsmView> rsm_views(const scene::Light& light, const SceneSphere& sphere) {
+std::vector<RsmView> rsm_views(const scene::Light& light, const scene::BoundingSphere& sphere) {
   const glm::vec3 dir = glm::normalize(light.direction);
   if (light.type == scene::LightType::Directional) {
     const float r = sphere.radius;

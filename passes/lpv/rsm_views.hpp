@@ -25,14 +25,8 @@ struct RsmView {
   float extent = 1.0f;
 };
 
-struct SceneSphere {
-  glm::vec3 center{0.0f};
-  float radius = 1e-3f;
-};
-SceneSphere scene_bounding_sphere(const scene::Scene& scene);
-
 // The views of one light (1 or 6).
-std::vector<RsmView> rsm_views(const scene::Light& light, const SceneSphere& sphere);
+std::vector<RsmView> rsm_views(const scene::Light& light, const scene::BoundingSphere& sphere);
 
 // Solid angle of the texel (x, y) of an n x n perspective face whose image plane at distance 1
 // spans [-extent, extent]^2: exact (the rectangle's solid angle, not cos^3 x area), so the

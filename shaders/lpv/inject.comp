@@ -132,16 +132,18 @@ void main() {
     }
     return;
   }
-  bool from_rsm = pc.mode == 1u ? index < pc.injected_edge * pc.injected_edge * pc.layers
-                                : pc.mode == 2u;
+  // MODE 1 runs over the texels, then the voxels; MODE 2 the texels, MODE 3 the voxels.
+  uint texels = pc.injected_edge * pc.injected_edge * pc.layers;
+  uint first_voxel = pc.mode == 1u ? texels : 0u;
+  bool from_rsm = pc.mode == 2u || (pc.mode == 1u && index < texels);
   Vpl v;
   int level = 0;
   if (from_rsm) {
-    if (index >= pc.injected_edge * pc.injected_edge * pc.layers) return;
+    if (index >= texels) return;
     v = rsm_vpl(index);
   } else {
 #if HAS_EMISSION
-    uint voxel = pc.mode == 1u ? index - pc.injected_edge * pc.injected_edge * pc.layers : index;
+    uint voxel = index - first_voxel;
     if (voxel >= uint(lpv_cell_total())) return;
     v = emission_vpl(voxel, level);
 #else

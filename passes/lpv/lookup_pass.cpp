@@ -84,7 +84,7 @@ void register_lookup(graph::Registry& registry) {
        graph::kStageCompute,
        {},
        false,
-       "lpv.propagate's accumulated intensities"},
+       "lpv.merge's volume: accumulated intensities, stopped flux, geometry"},
       contracts::gbuffer_input(GbufferTarget::BaseColor),
       contracts::gbuffer_input(GbufferTarget::Normal),
       contracts::gbuffer_input(GbufferTarget::Material),

@@ -5,7 +5,11 @@
 // The LPV has one cell per voxel of each level of the voxel clipmap it is bound with (one
 // level: a single volume fitted to the scene; several: cascades that follow the camera,
 // snapped to their cell as the clipmap's windows are). Cells are counted in window order,
-// level by level: cell = ((level * R + z) * R + y) * R + x.
+// cascade by cascade: cell = ((cascade * R + z) * R + y) * R + x.
+//
+// The octree LPV (seed 002 sec. 4.2) adds, per cascade, the levels R/2, R/4, ... after those
+// cells: octree level o has (R >> o)^3 cells per cascade, counted the same way from the end of
+// level o - 1. One octree level is the uniform LPV.
 
 #include <vulkan/vulkan.h>
 
@@ -22,25 +26,41 @@ inline constexpr VkFormat kRsmPositionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 // Per cell and colour channel, four two-band SH coefficients (shaders/lpv/sh.glsl).
 inline constexpr uint32_t kCoefficientsPerCell = 12;
 
-// The LPV's buffers, one record per cell (shaders/lpv/cells.glsl):
+// The most octree levels a pass accepts (R = 128 down to 1).
+inline constexpr uint32_t kMaxOctreeLevels = 8;
+
+// The LPV's buffers (shaders/lpv/cells.glsl):
 //   Injected  lpv.inject's fixed-point sums: a 16-byte header (the largest contribution's
 //             magnitude as float bits, the number of contributions that may add up in one
-//             cell), then kCoefficientsPerCell int32 per cell
-//   Radiance  lpv.propagate's result: per cell the SH per channel, the flux its geometry
-//             stopped and the geometry, five vec4 (LPV_RADIANCE_VEC4S)
-//   Work      lpv.propagate's scratch: two SH states (three vec4 per cell each), then the
-//             geometry (one vec4 per cell)
-enum class LpvBuffer { Injected, Radiance, Work };
+//             cell), then kCoefficientsPerCell int32 per cell of octree level 0
+//   Levels    a cell record per cell of every octree level (five vec4, LPV_RECORD_VEC4S: SH
+//             per channel, stopped flux and index mark, geometry): lpv.downsample's injected
+//             levels and lpv.propagate's accumulated levels
+//   Work      lpv.propagate's scratch: two SH states per cell of every octree level (three
+//             vec4 per cell each)
+//   Radiance  lpv.merge's result: a cell record per cell of octree level 0
+enum class LpvBuffer { Injected, Levels, Work, Radiance };
 VkDeviceSize lpv_buffer_bytes(LpvBuffer buffer, uint64_t cells);
 
 // R^3 x levels of a clipmap resource; 0 for anything else.
 uint64_t lpv_cell_count(const graph::ResourceInfo& clipmap);
+// The cells of `octree_levels` octree levels over the clipmap (its own cells at 1).
+uint64_t lpv_octree_cell_count(const graph::ResourceInfo& clipmap, uint32_t octree_levels);
 
-// The size rule of an LPV buffer with one cell per voxel of the clipmap bound to
-// `clipmap_slot`, and the validate check that reports `slot` when its buffer is smaller.
+// The size rule of an LPV buffer over the clipmap bound to `clipmap_slot` (with the pass's
+// "octree_levels" parameter for Levels and Work), and the validate check that reports `slot`
+// when its buffer is smaller.
 graph::SizeRule lpv_buffer_size(LpvBuffer buffer, const char* clipmap_slot);
 void check_lpv_buffer(graph::PassCheck& check, LpvBuffer buffer, const char* slot,
                       const char* clipmap_slot);
+
+// The "octree_levels" parameter and its check against the clipmap's resolution (each level
+// halves it: R must be divisible by 2^(levels - 1)).
+graph::ParamSpec octree_levels_param();
+void check_octree_levels(graph::PassCheck& check, const char* clipmap_slot);
+
+// The "merge" parameter of lpv.propagate and lpv.merge: how the octree levels combine.
+graph::ParamSpec merge_param();
 
 inline uint32_t groups(uint64_t n, uint32_t local) {
   return static_cast<uint32_t>((n + local - 1) / local);

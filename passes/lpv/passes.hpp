@@ -8,7 +8,9 @@ namespace voxgi::passes::lpv {
 
 void register_rsm(graph::Registry& registry);
 void register_inject(graph::Registry& registry);
+void register_downsample(graph::Registry& registry);
 void register_propagate(graph::Registry& registry);
+void register_merge(graph::Registry& registry);
 void register_lookup(graph::Registry& registry);
 
 }  // namespace voxgi::passes::lpv

@@ -11,6 +11,8 @@ VOXGI_PLUGIN_EXPORT void voxgi_plugin_register(voxgi::graph::Registry& registry)
   using namespace voxgi::passes::lpv;
   register_rsm(registry);
   register_inject(registry);
+  register_downsample(registry);
   register_propagate(registry);
+  register_merge(registry);
   register_lookup(registry);
 }

@@ -1,13 +1,18 @@
 #ifndef VOXGI_LPV_CELLS_GLSL
 #define VOXGI_LPV_CELLS_GLSL
 // Cells of the LPV (C++ twin: passes/lpv/lpv_layout.hpp): one per voxel of each level of the
-// voxel clipmap, in window order (not toroidal: the LPV is rebuilt whenever a window moves),
-//   cell = ((level * R + z) * R + y) * R + x.
+// voxel clipmap (a cascade), in window order (not toroidal: the LPV is rebuilt whenever a
+// window moves),
+//   cell = ((cascade * R + z) * R + y) * R + x,
+// then the octree levels o = 1, 2, ... (seed 002 sec. 4.2) of (R >> o)^3 cells per cascade,
+// each counted the same way from the end of the level before.
 // Include after contracts/voxel_clipmap.glsl.
 
-// vec4s per cell in lpv.propagate's radiance buffer: SH intensity r, g, b; the flux the cell's
-// geometry stopped (rgb); the cell's geometry (xyz mean normal, w opacity).
-const int LPV_RADIANCE_VEC4S = 5;
+// vec4s per cell record (lpv.downsample's injected levels, lpv.propagate's accumulated levels,
+// lpv.merge's radiance): SH intensity r, g, b; the flux the cell's geometry stopped (rgb) and
+// its index mark (w: the cell's octree level where light is in it, -1 where none; after the
+// merge, the level the cell took); the cell's geometry (xyz mean normal, w opacity).
+const int LPV_RECORD_VEC4S = 5;
 
 int lpv_cell(ivec3 c, int level) {
   int r = voxel_resolution();
@@ -26,6 +31,54 @@ ivec4 lpv_cell_coords(uint index) {
 int lpv_cell_total() {
   int r = voxel_resolution();
   return r * r * r * voxel_level_count();
+}
+
+// Octree levels: level o has (R >> o)^3 cells per cascade; level 0 is lpv_cell's.
+int lpv_level_resolution(int o) { return voxel_resolution() >> o; }
+
+int lpv_level_base(int o) {
+  int base = 0;
+  for (int i = 0; i < o; ++i) {
+    int n = lpv_level_resolution(i);
+    base += n * n * n * voxel_level_count();
+  }
+  return base;
+}
+
+int lpv_octree_cell(ivec3 c, int cascade, int o) {
+  int n = lpv_level_resolution(o);
+  return lpv_level_base(o) + ((cascade * n + c.z) * n + c.y) * n + c.x;
+}
+
+bool lpv_octree_inside(ivec3 c, int o) {
+  return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(lpv_level_resolution(o))));
+}
+
+// The cell (xyz), cascade and octree level of an index over the cells of `levels` levels;
+// level = levels where the index is past them.
+struct LpvOctreeCell {
+  ivec3 c;
+  int cascade;
+  int level;
+};
+
+LpvOctreeCell lpv_octree_coords(int index, int levels) {
+  LpvOctreeCell cell;
+  cell.level = levels;
+  int base = 0;
+  for (int o = 0; o < levels; ++o) {
+    int n = lpv_level_resolution(o);
+    int count = n * n * n * voxel_level_count();
+    if (index < base + count) {
+      int i = index - base;
+      cell.c = ivec3(i % n, (i / n) % n, (i / (n * n)) % n);
+      cell.cascade = i / (n * n * n);
+      cell.level = o;
+      return cell;
+    }
+    base += count;
+  }
+  return cell;
 }
 
 // Fixed-point injection (seed 002's float atomics are order-dependent): every contribution is

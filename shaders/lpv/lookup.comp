@@ -52,7 +52,7 @@ vec3 level_irradiance(vec3 q, vec3 n, int level) {
     float w = w3.x * w3.y * w3.z;
     if (w <= 0.0) continue;
     int cell = lpv_cell(c, level);
-    int at = cell * LPV_RADIANCE_VEC4S;
+    int at = cell * LPV_RECORD_VEC4S;
     e += w * vec3(dot(accumulated[at], cosine), dot(accumulated[at + 1], cosine),
                   dot(accumulated[at + 2], cosine));
   }
@@ -76,7 +76,7 @@ bool surface_irradiance(vec3 p, vec3 n, int level, out vec3 e) {
     if (!lpv_inside(c)) continue;
     vec3 w3 = mix(vec3(1.0) - t, t, vec3(o));
     float w = w3.x * w3.y * w3.z;
-    int at = lpv_cell(c, level) * LPV_RADIANCE_VEC4S;
+    int at = lpv_cell(c, level) * LPV_RECORD_VEC4S;
     vec4 g = accumulated[at + 4];
     float len = length(g.xyz);
     bool same_surface = g.w > 0.0 && (len < 0.25 || dot(g.xyz, n) > 0.25 * len);

@@ -1,76 +1,63 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// lpv.propagate: the injected intensities spread cell to cell (seed 002 sec. 3.2.3; docs/lpv.md).
+// lpv.propagate: the injected intensities spread cell to cell on every octree level (seed 002
+// sec. 3.2.3 and 4.2; docs/lpv.md).
 //
-// MODE 0: decodes the fixed-point injection into state 0 and the accumulation (S_0), and
-//         builds the geometry volume (blocking potential as SH) from the voxels.
-// MODE 1: one iteration from state `src` into state `1 - src`: a cell B gathers from each
+// MODE 0: copies lpv.downsample's injected levels into state 0 and the accumulation (S_0).
+// MODE 1: step `step` of every level with cells in [cell_begin, ...): a cell B first counts
+//         the flux its own geometry stops of what its current state sends (light that reaches
+//         its surface); at its level's last step that is all. Otherwise B gathers from each
 //         axial neighbour A the flux A's intensity sends through each of B's five faces that do
 //         not face A, the exact integral of A's SH over the face as seen from A's centre
 //         (lpv/sh.glsl), and re-emits it from its centre as a Lambertian lobe along the face's
 //         normal: flux / pi x max(0, f.w). The 6 x 5 faces partition the sphere, so at factor 1
 //         the total flux is carried, not created. Light crossing into B is multiplied by
-//         1 - B's blocking towards the direction of travel (with occlusion on); light that
-//         leaves the window is lost. The accumulation adds each iteration: S = sum S_i.
+//         1 - A's blocking towards the direction of travel; light that
+//         leaves the window is lost. The accumulation adds each step: S = sum S_i.
+//
+// Octree levels propagate independently, each over its own cells. With the "shells" merge a
+// level above 0 accumulates only the steps from `shell_start` on: level o's step t carries
+// light about t 2^o level-0 cells, so level 0 counts distances up to k cells and level o the
+// distances (k 2^(o-1), k 2^o]: every distance is counted once, at the coarsest resolution that
+// still resolves it. The "index" merge (the seed's) accumulates every step on every level.
 #include "lib/common.glsl"
 #include "lpv/sh.glsl"
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
 #include "contracts/voxel_clipmap.glsl"
-#include "contracts/voxel_volumes.glsl"
 #include "lpv/cells.glsl"
 
 #ifndef REPROJECT_DIRECTIONAL
 #define REPROJECT_DIRECTIONAL 0
 #endif
-#ifndef HAS_OCCLUSION
-#define HAS_OCCLUSION 0
-#endif
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(local_size_x = 64) in;
 
-layout(set = 0, binding = 1, std430) readonly buffer Injected {
-  uint max_magnitude_bits;
-  uint contributions;
-  uint pad0;
-  uint pad1;
-  int coefficients[];
-} injected;
-// States 0 and 1 (cells x 3 vec4 each), then the geometry volume (cells vec4).
+// lpv.downsample's records per cell of every octree level (lpv/cells.glsl): the injected SH,
+// the index mark and the geometry volume.
+layout(set = 0, binding = 1, std430) readonly buffer InjectedLevels { vec4 injected[]; };
+// States 0 and 1 (cells x 3 vec4 each).
 layout(set = 0, binding = 2, std430) buffer Work { vec4 work[]; };
-// Per cell (lpv/cells.glsl, LPV_RADIANCE_VEC4S): the accumulated SH intensity per channel, the
-// flux its geometry stopped (rgb), and its geometry (normal, opacity).
+// The accumulated records per cell of every octree level.
 layout(set = 0, binding = 3, std430) buffer Accumulated { vec4 accumulated[]; };
-#if HAS_OCCLUSION
-layout(set = 0, binding = 4) uniform sampler3D voxel_albedo;
-layout(set = 0, binding = 5) uniform sampler3D voxel_normal;
-#endif
 
 layout(push_constant) uniform Push {
   uint mode;
-  uint src;      // state read by MODE 1
-  float factor;  // propagation factor (1: physical)
+  uint src;         // state read by MODE 1
+  uint step;        // MODE 1: the step, t in S_t
+  int cell_begin;   // MODE 1: the first cell of this dispatch
+  float factor;     // propagation factor (1: physical)
+  uint shell_start; // first step levels above 0 accumulate
+  uint octree_levels;
   uint pad;
+  uvec4 iterations[2];  // per octree level: its number of steps
 } pc;
 
-int state_index(uint state, int cell, int ch) { return (int(state) * lpv_cell_total() + cell) * 3 + ch; }
-int geometry_index(int cell) { return 2 * 3 * lpv_cell_total() + cell; }
+int cell_total() { return lpv_level_base(int(pc.octree_levels)); }
+int state_index(uint state, int cell, int ch) { return (int(state) * cell_total() + cell) * 3 + ch; }
+uint level_iterations(int o) { return pc.iterations[o >> 2][o & 3]; }
+bool accumulates(int o, uint step) { return o == 0 || step >= pc.shell_start; }
 
-#if HAS_OCCLUSION
-// The geometry of a voxel: its mean normal m (|m| <= 1; ~0 where opposite faces share the
-// voxel) and its opacity.
-vec4 voxel_geometry(ivec3 c, int level) {
-  if (!voxel_level_valid(level)) return vec4(0.0);
-  ivec3 t = voxel_texel(c, level);
-  vec4 n = texelFetch(voxel_normal, t, 0);
-  float opacity = clamp(texelFetch(voxel_albedo, t, 0).a, 0.0, 1.0);
-  if (!voxel_normal_occupied(n) || !(opacity > 0.0)) return vec4(0.0);
-  vec3 m = n.xyz;
-  float len = length(m);
-  if (!(len <= 1.0)) m = len > 1.0 ? m / len : vec3(0.0);
-  return vec4(m, opacity);
-}
-#endif
 
 // Blocking potential (Kaplanyan and Dachsbacher 2010) of a voxel's geometry g for light
 // travelling along unit w: the fraction of the rays crossing the cell that its surface stops,
@@ -98,40 +85,33 @@ float face_flux(vec4 sh, ivec3 d, ivec3 f) {
 }
 
 void main() {
-  ivec3 id = ivec3(gl_GlobalInvocationID);
-  int r = voxel_resolution();
-  int level = id.z / r;
-  ivec3 c = ivec3(id.xy, id.z % r);
-  if (level >= voxel_level_count() || any(greaterThanEqual(id.xy, ivec2(r)))) return;
-  int cell = lpv_cell(c, level);
+  int index = int(gl_GlobalInvocationID.x) + (pc.mode == 0u ? 0 : pc.cell_begin);
+  LpvOctreeCell where = lpv_octree_coords(index, int(pc.octree_levels));
+  int o = where.level;
+  if (o >= int(pc.octree_levels)) return;
+  ivec3 c = where.c;
+  int cell = index;
+  int at = cell * LPV_RECORD_VEC4S;
 
   if (pc.mode == 0u) {
-    float scale = lpv_fixed_point_scale(injected.max_magnitude_bits, injected.contributions);
+    bool counted = accumulates(o, 0u);
     for (int ch = 0; ch < 3; ++ch) {
-      vec4 s = vec4(0.0);
-      if (scale > 0.0) {
-        int base = cell * 12 + ch * 4;
-        s = vec4(injected.coefficients[base], injected.coefficients[base + 1],
-                 injected.coefficients[base + 2], injected.coefficients[base + 3]) / scale;
-      }
+      vec4 s = injected[at + ch];
       work[state_index(0u, cell, ch)] = s;
-      accumulated[cell * LPV_RADIANCE_VEC4S + ch] = s;
+      accumulated[at + ch] = counted ? s : vec4(0.0);
     }
-    accumulated[cell * LPV_RADIANCE_VEC4S + 3] = vec4(0.0);
-    vec4 gv = vec4(0.0);
-#if HAS_OCCLUSION
-    gv = voxel_geometry(c, level);
-#endif
-    work[geometry_index(cell)] = gv;
-    accumulated[cell * LPV_RADIANCE_VEC4S + 4] = gv;
+    accumulated[at + 3] = vec4(0.0, 0.0, 0.0, injected[at + 3].w);
+    accumulated[at + 4] = injected[at + 4];
     return;
   }
+  uint iterations = level_iterations(o);
+  if (pc.step > iterations) return;
 
-  // The flux the cell's own geometry stops of what its current state sends (MODE 1 and the
-  // final MODE 2): light that reaches the cell's surface. Negative face fluxes (SH ringing)
-  // are not counted as received light.
-  vec4 own_geometry = work[geometry_index(cell)];
-  if (own_geometry.w > 0.0) {
+  // The flux the cell's own geometry stops of what its current state sends: light that
+  // reaches the cell's surface. Negative face fluxes (SH ringing) are not counted as received
+  // light.
+  vec4 own_geometry = injected[at + 4];
+  if (own_geometry.w > 0.0 && accumulates(o, pc.step)) {
     vec4 own[3];
     for (int ch = 0; ch < 3; ++ch) own[ch] = work[state_index(pc.src, cell, ch)];
     vec3 stopped = vec3(0.0);
@@ -145,26 +125,25 @@ void main() {
         for (int ch = 0; ch < 3; ++ch) stopped[ch] += blocked * face_flux(own[ch], d, f);
       }
     }
-    accumulated[cell * LPV_RADIANCE_VEC4S + 3].rgb += stopped;
+    accumulated[at + 3].rgb += stopped;
   }
-  if (pc.mode == 2u) return;
+  if (pc.step == iterations) return;
 
   vec4 gathered[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
   for (int a = 0; a < 6; ++a) {
     ivec3 d = AXES[a];
     ivec3 source = c - d;
-    if (!lpv_inside(source)) continue;
-    int source_cell = lpv_cell(source, level);
+    if (!lpv_octree_inside(source, o)) continue;
+    int source_cell = lpv_octree_cell(source, where.cascade, o);
     vec4 sh[3];
     for (int ch = 0; ch < 3; ++ch) sh[ch] = work[state_index(pc.src, source_cell, ch)];
     if (all(equal(sh[0], vec4(0.0))) && all(equal(sh[1], vec4(0.0))) &&
         all(equal(sh[2], vec4(0.0)))) {
       continue;
     }
-    float pass_through = 1.0;
-#if HAS_OCCLUSION
-    pass_through = 1.0 - clamp(blocking(work[geometry_index(source_cell)], vec3(d)), 0.0, 1.0);
-#endif
+    // Without a geometry volume (lpv.downsample's occlusion off) the geometry is 0: no block.
+    float pass_through =
+        1.0 - clamp(blocking(injected[source_cell * LPV_RECORD_VEC4S + 4], vec3(d)), 0.0, 1.0);
     for (int b = 0; b < 6; ++b) {
       ivec3 f = AXES[b];
       if (f == -d) continue;
@@ -189,12 +168,16 @@ void main() {
     }
   }
   uint dst = 1u - pc.src;
+  bool counted = accumulates(o, pc.step + 1u);
+  bool lit = false;
   for (int ch = 0; ch < 3; ++ch) {
     vec4 s = gathered[ch] * pc.factor;
     // A factor above 1 grows without bound over many iterations: keep values finite.
     s = clamp(s, vec4(-3.0e37), vec4(3.0e37));
+    lit = lit || any(notEqual(s, vec4(0.0)));
     work[state_index(dst, cell, ch)] = s;
-    int at = cell * LPV_RADIANCE_VEC4S + ch;
-    accumulated[at] = clamp(accumulated[at] + s, vec4(-3.0e37), vec4(3.0e37));
+    if (counted) accumulated[at + ch] = clamp(accumulated[at + ch] + s, vec4(-3.0e37), vec4(3.0e37));
   }
+  // The index volume (seed 002 sec. 4.2): light landed in this cell of level o.
+  if (lit && accumulated[at + 3].w < 0.0) accumulated[at + 3].w = float(o);
 }

@@ -15,6 +15,18 @@
 namespace voxgi::test {
 namespace {
 
+// Five octree levels over `resolution`^3 cells, 4 steps each (seed 002's setting).
+VoxelGiSetup lpv_octree_gi_setup(uint32_t resolution, const std::string& merge) {
+  constexpr int kOctreeLevels = 5;
+  VoxelGiSetup gi = lpv_gi_setup(resolution, 4);
+  gi.overrides.insert_or_assign("lpv.octree_levels", std::to_string(kOctreeLevels));
+  gi.overrides.insert_or_assign("propagate.merge", merge);
+  gi.overrides.insert_or_assign("merge.merge", merge);
+  gi.label += ", octree ";
+  gi.label += merge;
+  return gi;
+}
+
 // The receiver over the lit square: measured 0.45 to 0.78 of the closed form at 32^3. The
 // light reaching the small receiver carries the two-band SH's negative back lobe of the
 // square's light (docs/lpv.md, "Negative flux"), and the receiver's cell receives only the
@@ -49,6 +61,12 @@ TEST_F(GpuTest, LpvReceiverOverASquareThroughTwoCascades) {
   expect_lit_square_matches_closed_form(gi, SquareLight::Directional, kLpvLitSquareTolerance);
 }
 
+// The octree LPV (levels 32 to 2, 4 steps each, shells merge) over the lit square.
+TEST_F(GpuTest, LpvOctreeReceiverOverASquareUnderADirectionalLight) {
+  expect_lit_square_matches_closed_form(lpv_octree_gi_setup(32, "shells"), SquareLight::Directional,
+                                        kLpvLitSquareTolerance);
+}
+
 class LpvEnergyBoundTest : public GpuTest, public ::testing::WithParamInterface<size_t> {};
 
 // The mean indirect luminance never more than kEnergyBoundTolerance above the path tracer
@@ -59,8 +77,9 @@ TEST_P(LpvEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
   const scene::Scene scene = bound_scene.make();
   const PathTracedMean reference =
       path_traced_mean_indirect(scene, kEnergyBoundImageSize, 1, kEnergyBoundSamplesPerPixel);
-  for (int iterations : {16, 64}) {
-    const VoxelGiSetup gi = lpv_gi_setup(32, iterations);
+  for (const VoxelGiSetup& gi :
+       {lpv_gi_setup(32, 16), lpv_gi_setup(32, 64), lpv_octree_gi_setup(32, "shells"),
+        lpv_octree_gi_setup(32, "index")}) {
     const std::string label = std::string(bound_scene.name) + ", " + gi.label;
     RenderHarness harness(voxel_gi_render_setup(gi, scene, kEnergyBoundImageSize));
     harness.render();

@@ -1,4 +1,5 @@
-// graphs/lpv.json end to end (lpv.rsm, lpv.inject, lpv.propagate, lpv.lookup): a white furnace,
+// graphs/lpv.json end to end (lpv.rsm, lpv.inject, lpv.downsample, lpv.propagate, lpv.merge,
+// lpv.lookup): a white furnace,
 // determinism of the fixed-point injection, colour bleeding and identical static frames in the
 // Cornell box, skipping on static frames and after a light moves, free-space propagation that
 // neither gains nor loses flux, and a thin wall between a lit and a dark room with and without
@@ -109,7 +110,7 @@ TEST_F(GpuTest, LpvCornellBoxIsDeterministicBleedsColourAndSkipsStaticFrames) {
   EXPECT_GT(right.g / right.r, left.g / left.r);
 
   first.render();
-  for (const char* pass : {"rsm", "inject", "propagate"}) {
+  for (const char* pass : {"rsm", "inject", "downsample", "propagate", "merge"}) {
     const auto* t = timing(first, pass);
     ASSERT_NE(t, nullptr) << pass;
     EXPECT_FALSE(t->skipped.empty()) << pass << " ran on a static frame";
@@ -120,7 +121,7 @@ TEST_F(GpuTest, LpvCornellBoxIsDeterministicBleedsColourAndSkipsStaticFrames) {
 
   // A light change reruns the maps, the injection and the propagation, not the voxelization.
   first.render(1, {false, true, false});
-  for (const char* pass : {"rsm", "inject", "propagate"}) {
+  for (const char* pass : {"rsm", "inject", "downsample", "propagate", "merge"}) {
     const auto* t = timing(first, pass);
     ASSERT_NE(t, nullptr) << pass;
     EXPECT_TRUE(t->skipped.empty()) << pass << " skipped after a light change: " << t->skipped;
@@ -172,7 +173,7 @@ double accumulated_flux(RenderHarness& harness) {
   EXPECT_NE(radiance, nullptr);
   if (!radiance) return 0.0;
   const std::vector<float> cells = radiance->download_vector<float>(radiance->size() / 4);
-  constexpr size_t kFloatsPerCell = 20;  // lpv/cells.glsl, LPV_RADIANCE_VEC4S
+  constexpr size_t kFloatsPerCell = 20;  // lpv/cells.glsl, LPV_RECORD_VEC4S
   double sum = 0.0;
   for (size_t i = 0; i + kFloatsPerCell <= cells.size(); i += kFloatsPerCell) sum += cells[i + 4];
   return sum * 2.0 * std::sqrt(std::numbers::pi);  // 4 pi Y0

@@ -4,7 +4,9 @@
 // very dim), a light on a surface and one inside geometry, a thin double-sided wall, degenerate
 // triangles, the camera inside geometry and outside the volume, grazing light, a mirrored node,
 // far from the origin, a tiny scene, spot and directional lights, three cascades with the
-// camera at an edge, and seed 002's propagation factor 3 (and 16) over many iterations.
+// camera at an edge, and seed 002's propagation factor 3 (and 16) over many iterations; the
+// octree LPV on an empty scene, emitters only, a light inside geometry (index merge), three
+// cascades and factor 16.
 
 #include <gtest/gtest.h>
 
@@ -44,6 +46,9 @@ scene::Scene floor_lit_by(Light light, glm::vec3 position, glm::vec3 direction) 
   b.add_camera("view", {0, 1.2f, 1.8f}, {0, 0.2f, 0}, 0.8f);
   return b.finish();
 }
+
+const std::map<std::string, std::string> kOctree = {{"lpv.octree_levels", "5"},
+                                                    {"lpv.iterations", "4"}};
 
 std::vector<HardCase> hard_cases() {
   return {
@@ -86,6 +91,21 @@ std::vector<HardCase> hard_cases() {
       {"factor_16_many_iterations",
        [] { return scene::make_builtin_scene("cornell"); },
        {{"propagate.factor", "16"}, {"lpv.iterations", "256"}}},
+      // The octree LPV (five levels) on the cases that stress its levels and merges.
+      {"octree_empty_scene", [] { return scene::make_builtin_scene("empty"); }, kOctree},
+      {"octree_emitters_only", [] { return very_bright_and_very_dim_emitters(); }, kOctree},
+      {"octree_index_light_inside_geometry",
+       [] { return light_on_a_surface_and_inside_geometry(); },
+       {{"lpv.octree_levels", "5"},
+        {"lpv.iterations", "4"},
+        {"propagate.merge", "index"},
+        {"merge.merge", "index"}}},
+      {"octree_three_cascades",
+       [] { return lit_floor("levels", glm::vec3(0.0f), 1.0f, glm::vec3(0.9f, 0.3f, 0.9f)); },
+       {{"voxel.levels", "3"}, {"lpv.octree_levels", "5"}, {"lpv.iterations", "4"}}},
+      {"octree_factor_16_many_iterations",
+       [] { return scene::make_builtin_scene("cornell"); },
+       {{"lpv.octree_levels", "5"}, {"propagate.factor", "16"}, {"lpv.iterations", "256"}}},
   };
 }
 

@@ -256,8 +256,10 @@ class BenchRun {
     const graph::CompiledGraph compiled =
         catalog_.compile(catalog_.graph(entry.file), scene, config.width, config.height,
                          config.overrides, &renderer.context());
+    const runtime::FrameChanges changes{false, spec_.changes != "none",
+                                        spec_.changes == "geometry"};
     RenderRun run = renderer.render(compiled, catalog_.registry(), scene, camera,
-                                    spec_.warmup_frames, spec_.frames);
+                                    spec_.warmup_frames, spec_.frames, {}, changes);
 
     ConfigResult r;
     r.index = config.index;
@@ -516,6 +518,7 @@ int run_bench(const std::vector<std::string>& argv) {
   results.reference_graph = spec.reference.is_image() ? spec.reference.image.file_as_written
                                                       : spec.reference.file_as_written;
   results.reference_frames = spec.reference.is_image() ? 0 : spec.reference.frames;
+  results.changes = spec.changes;
   results.configurations_total = all.size();
   if (shard) results.shards.push_back(shard->text());
 

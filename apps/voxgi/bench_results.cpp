@@ -236,6 +236,7 @@ json to_json(const BenchResults& results) {
   doc["bench_hash"] = results.bench_hash;
   doc["device"] = results.device;
   doc["reference"] = {{"graph", results.reference_graph}, {"frames", results.reference_frames}};
+  doc["changes"] = results.changes;
   doc["configurations_total"] = results.configurations_total;
   doc["shards"] = results.shards;
   doc["missing"] = results.missing();
@@ -298,6 +299,8 @@ BenchResults results_from_json(const json& doc, const std::string& file) {
   const json& reference = read.at(doc, "reference", "");
   results.reference_graph = read.text(reference, "graph", "reference.");
   results.reference_frames = static_cast<uint32_t>(read.count(reference, "frames", "reference."));
+  // Results written before the field existed measured static frames.
+  results.changes = doc.contains("changes") ? read.text(doc, "changes", "") : "none";
   results.configurations_total = read.count(doc, "configurations_total", "");
   const json& shards = read.at(doc, "shards", "");
   if (!shards.is_array()) read.fail("shards", "expected an array");

@@ -96,6 +96,7 @@ struct BenchResults {
   std::string device;
   std::string reference_graph;
   uint32_t reference_frames = 0;
+  std::string changes = "none";       // BenchSpec::changes of the measured frames
   size_t configurations_total = 0;    // in the whole bench, every shard together
   std::vector<std::string> shards;    // "2/4" per shard merged in; empty for an unsharded run
   std::vector<ConfigResult> results;  // by index

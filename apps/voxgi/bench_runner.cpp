@@ -58,7 +58,8 @@ scene::GpuScene& BenchRenderer::gpu_scene(const scene::Scene& scene) {
 RenderRun BenchRenderer::render(const graph::CompiledGraph& compiled,
                                 const graph::Registry& registry, const scene::Scene& scene,
                                 const scene::Camera& camera, uint32_t warmup, uint32_t frames,
-                                const std::function<void(uint32_t)>& on_frame) {
+                                const std::function<void(uint32_t)>& on_frame,
+                                runtime::FrameChanges measured_changes) {
   scene::GpuScene& uploaded = gpu_scene(scene);
   graph::Executor executor(*context_, *shaders_, registry);
   executor.build(compiled, scene, uploaded);
@@ -68,7 +69,8 @@ RenderRun BenchRenderer::render(const graph::CompiledGraph& compiled,
   runtime::FrameDriver driver(executor);
   const runtime::FrameView view = runtime::frame_view(camera, aspect);
   for (uint32_t frame = 0; frame < warmup + frames; ++frame) {
-    driver.render(view, 0.0, runtime::FrameChanges{false, false, false});
+    driver.render(view, 0.0,
+                  frame >= warmup ? measured_changes : runtime::FrameChanges{false, false, false});
     if (frame >= warmup) run.measured.push_back(executor.timings());
     if (on_frame) on_frame(frame + 1);
   }

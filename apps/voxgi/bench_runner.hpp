@@ -17,6 +17,7 @@
 #include "engine/graph/graph_desc.hpp"
 #include "engine/graph/plugin_loader.hpp"
 #include "engine/image/image.hpp"
+#include "engine/runtime/frame_driver.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "engine/scene/scene.hpp"
 
@@ -59,12 +60,15 @@ class BenchRenderer {
   explicit BenchRenderer(const gpu::ContextOptions& options);
   gpu::Context& context() { return *context_; }
 
-  // Renders warmup + frames frames of a static view (camera, lights and geometry change only
-  // on the first frame, so progressive graphs accumulate and caches are allowed to skip work).
-  // `on_frame` (optional) is called after each frame with the number of frames done.
+  // Renders warmup + frames frames of one view (camera, lights and geometry change only on the
+  // first frame, so progressive graphs accumulate and caches are allowed to skip work). The
+  // measured frames also report `measured_changes` (BenchSpec::changes), so that the passes
+  // that depend on them run again. `on_frame` (optional) is called after each frame with the
+  // number of frames done.
   RenderRun render(const graph::CompiledGraph& compiled, const graph::Registry& registry,
                    const scene::Scene& scene, const scene::Camera& camera, uint32_t warmup,
-                   uint32_t frames, const std::function<void(uint32_t)>& on_frame = {});
+                   uint32_t frames, const std::function<void(uint32_t)>& on_frame = {},
+                   runtime::FrameChanges measured_changes = {false, false, false});
 
  private:
   scene::GpuScene& gpu_scene(const scene::Scene& scene);

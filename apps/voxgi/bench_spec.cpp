@@ -38,9 +38,9 @@ class BenchParser {
       error(root.loc(), "", "a bench file is a JSON object");
       diagnostics_.throw_if_any();
     }
-    check_keys(
-        root, "",
-        {"name", "doc", "scenes", "resolution", "warmup_frames", "frames", "graphs", "reference"});
+    check_keys(root, "",
+               {"name", "doc", "scenes", "resolution", "warmup_frames", "frames", "changes",
+                "graphs", "reference"});
     spec.name = file_.stem().string();
     if (const Value* name = root.find("name")) spec.name = string_of(*name, "name");
 
@@ -61,6 +61,15 @@ class BenchParser {
     }
     if (const Value* frames = root.find("frames")) {
       spec.frames = integer_of(*frames, "frames", 1, 100000);
+    }
+    if (const Value* changes = root.find("changes")) {
+      const std::string written = string_of(*changes, "changes");
+      if (written == "none" || written == "lights" || written == "geometry") {
+        spec.changes = written;
+      } else if (!written.empty()) {
+        error(changes->loc(), "changes", "unknown value '" + written + "'",
+              "one of \"none\", \"lights\", \"geometry\"");
+      }
     }
 
     const Value* graphs = required(root, "graphs");

@@ -68,6 +68,10 @@ struct BenchSpec {
   std::vector<std::pair<uint32_t, uint32_t>> resolutions;
   uint32_t warmup_frames = 2;
   uint32_t frames = 8;  // measured frames after the warm-up
+  // What changes in every measured frame: "none" (a static view: change-driven passes skip),
+  // "lights" (passes that depend on the lights run again, as when a light moves) or "geometry"
+  // (everything that depends on the scene runs again).
+  std::string changes = "none";
   std::vector<BenchGraph> graphs;
   BenchReference reference;
 };

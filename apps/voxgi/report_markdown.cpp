@@ -109,6 +109,15 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
     md << "- reference: `" << results.reference_graph << "`, " << results.reference_frames
        << " frames\n";
   }
+  if (results.changes == "lights") {
+    md << "- measured frames: the lights change in each one, so every pass that depends on them "
+          "runs again (the cost of a frame in which a light moves)\n";
+  } else if (results.changes == "geometry") {
+    md << "- measured frames: the geometry and the lights change in each one, so every pass "
+          "that depends on the scene runs again\n";
+  } else {
+    md << "- measured frames: a static view (passes whose inputs did not change skip)\n";
+  }
   md << "- configurations: " << results.results.size() << " of " << results.configurations_total;
   if (!results.shards.empty()) {
     md << " (merged from shards";

@@ -229,6 +229,45 @@ TEST_F(VoxgiBench, ShardsAndMergeEqualTheUnshardedRun) {
 // vct (one bounce) and dvs (K + 1 bounces) against the path tracer limited to as many bounces
 // and diffuse-only materials, and against the full reference split as they split; then the same
 // bench against that reference given as image files.
+// "changes": "lights" measures frames in which a light moves: the LPV's change-driven passes
+// run in every measured frame instead of skipping, the voxelization still skips, and the
+// report says what was measured.
+TEST_F(VoxgiBench, ChangedLightsRerunTheChangeDrivenPasses) {
+  const auto run = [&](const std::string& name, const std::string& changes) {
+    write_text(dir_ / (name + ".json"), R"({ "scenes": ["cornell"], "resolution": [32, 32],
+      "warmup_frames": 1, "frames": 2, )" + changes +
+                                            R"(
+      "graphs": [{ "graph": "graphs/lpv.json", "set": { "voxel.resolution": 16,
+                   "lpv.iterations": 4, "lpv.rsm_resolution": 32 } }],
+      "reference": { "graph": "graphs/default.json", "frames": 1 } })");
+    ProcessOptions options;
+    options.timeout = std::chrono::milliseconds(120000);
+    const ProcessResult r = voxgi(
+        {"bench", name + ".json", "--out", name, "--reference-cache", "cache", "--validation"},
+        options);
+    EXPECT_TRUE(exited_with(r, 0));
+    return read_json(dir_ / name / "results.json");
+  };
+  const auto skipped = [](const json& results, const std::string& pass) -> int {
+    for (const json& p : results["results"][0]["passes"]) {
+      if (p["pass"] == pass) return p["skipped_frames"].get<int>();
+    }
+    ADD_FAILURE() << "no pass " << pass;
+    return -1;
+  };
+  const json moving = run("moving", R"("changes": "lights",)");
+  EXPECT_EQ(moving["changes"], "lights");
+  for (const char* pass : {"rsm", "inject", "downsample", "propagate", "merge"}) {
+    EXPECT_EQ(skipped(moving, pass), 0) << pass;
+  }
+  EXPECT_EQ(skipped(moving, "voxelize"), 2);
+  EXPECT_NE(read_text(dir_ / "moving" / "report.md").find("the lights change in each one"),
+            std::string::npos);
+  const json still = run("still", "");
+  EXPECT_EQ(still["changes"], "none");
+  EXPECT_EQ(skipped(still, "propagate"), 2);
+}
+
 TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
   if (!fs::exists(fs::path(VOXGI_SOURCE_DIR) / "graphs" / "reference.json")) {
     GTEST_SKIP() << "needs the reference path tracer graph";

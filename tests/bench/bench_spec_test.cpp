@@ -101,6 +101,18 @@ TEST(BenchSpec, DefaultsAndSeveralResolutions) {
                                    .content_hash);
 }
 
+TEST(BenchSpec, MeasuredFramesChangeWhatTheFileSays) {
+  const std::string rest =
+      std::string(R"("scenes": ["cornell"], "graphs": ["graphs/default.json"], )") + kReference;
+  EXPECT_EQ(parse("{" + rest + "}").changes, "none");
+  EXPECT_EQ(parse(R"({ "changes": "lights", )" + rest + "}").changes, "lights");
+  EXPECT_EQ(parse(R"({ "changes": "geometry", )" + rest + "}").changes, "geometry");
+  const std::string message = error_of(R"({ "changes": "sometimes", )" + rest + "}");
+  EXPECT_NE(message.find("field 'changes': unknown value 'sometimes'"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("\"lights\""), std::string::npos) << message;
+}
+
 TEST(BenchSpec, SweepValuesAreWrittenAsTheCommandLineTakesThem) {
   const BenchSpec spec = parse(std::string(R"({ "scenes": ["cornell"],
     "graphs": [{ "graph": "graphs/default.json",

@@ -78,13 +78,19 @@ TEST_P(Soak, ManyFramesStayFiniteValidAndFlatInMemory) {
   settings.width = 32;
   settings.height = 32;
   settings.overrides = {{"voxel.resolution", "32"}};
-  const std::string graph = std::string(VOXGI_SOURCE_DIR) + "/graphs/" + GetParam();
-  const std::string name = GetParam();
+  // "lpv.json octree": the graph file and its octree LPV.
+  const std::string param = GetParam();
+  const std::string name = param.substr(0, param.find(' '));
+  const std::string graph = std::string(VOXGI_SOURCE_DIR) + "/graphs/" + name;
   if (name != "vct.json" && name != "dvs.json" && name != "lpv.json") {
     settings.overrides.clear();
   }
   // Every moving frame propagates again: a few iterations keep lavapipe fast.
   if (name == "lpv.json") settings.overrides["lpv.iterations"] = "8";
+  if (param == "lpv.json octree") {
+    settings.overrides["lpv.octree_levels"] = "5";
+    settings.overrides["lpv.iterations"] = "4";
+  }
   runtime::GraphInstance instance(runtime, graph, settings);
   const runtime::FrameView view = runtime::frame_view(runtime.scene().cameras.front(), 1.0f);
   int moved_frames = 0;
@@ -122,10 +128,11 @@ TEST_P(Soak, ManyFramesStayFiniteValidAndFlatInMemory) {
 
 INSTANTIATE_TEST_SUITE_P(Graphs, Soak,
                          ::testing::Values("default.json", "vct.json", "dvs.json", "lpv.json",
-                                           "reference.json"),
+                                           "lpv.json octree", "reference.json"),
                          [](const auto& param_info) {
                            std::string name = param_info.param;
-                           return name.substr(0, name.find('.'));
+                           const bool octree = name.ends_with(" octree");
+                           return name.substr(0, name.find('.')) + (octree ? "_octree" : "");
                          });
 
 }  // namespace

@@ -5,8 +5,9 @@
 // flux Phi = stride^2 x its texel's flux (the injected texel stands for stride^2 texels: the
 // solid angle is that of the injected resolution), radiant intensity (Phi / pi) max(0, n.w),
 // placed half a cell along its normal, into the cell that holds it on every level whose window
-// contains it. Emissive voxels inject pi x L_e x (voxel edge)^2 the same way, on their own
-// level. Sums are fixed point (shaders/lpv/cells.glsl), so the result does not depend on the
+// contains it. Emissive voxels inject the flux of the emitter in their column, pi x L_e x
+// (voxel edge)^2 / |n_a|, from the frontmost voxel of the column, on their own level (see
+// emission_vpl). Sums are fixed point (shaders/lpv/cells.glsl), so the result does not depend on the
 // order threads run in.
 //
 // MODE 0: clears the buffer and writes the header's contribution count.
@@ -72,6 +73,23 @@ Vpl rsm_vpl(uint index) {
 }
 
 #if HAS_EMISSION
+// The axis of n's largest component, as the voxelization chooses it (z, then x, then y).
+int dominant_axis(vec3 n) {
+  vec3 m = abs(n);
+  return (m.z >= m.x && m.z >= m.y) ? 2 : (m.x >= m.y ? 0 : 1);
+}
+
+// The voxel at texel t emits from a surface whose normal has the same dominant axis a, on the
+// same side (sign of its component `side`).
+bool emits_towards(ivec3 t, int a, float side) {
+  vec4 n = texelFetch(voxel_normal, t, 0);
+  vec3 le = texelFetch(voxel_emission, t, 0).rgb;
+  if (!voxel_normal_occupied(n) || !(max(le.r, max(le.g, le.b)) > 0.0)) return false;
+  float len = length(n.xyz);
+  if (!(len > 0.25)) return false;
+  return dominant_axis(n.xyz) == a && n[a] * side > 0.0;
+}
+
 // An emissive voxel on its own level; position is its surface point.
 Vpl emission_vpl(uint index, out int level) {
   ivec4 c = lpv_cell_coords(index);
@@ -88,8 +106,17 @@ Vpl emission_vpl(uint index, out int level) {
   // A voxel whose faces cancelled has no side to emit from; it is skipped.
   if (!(len > 0.25)) return v;
   v.normal = n.xyz / len;
+  // The voxelization weighs emission by the part of the voxel's cross-section the emitter
+  // covers along the dominant axis a of its normal, so every voxel of a column it crosses holds
+  // that column's emission (two for a plane on the face between two layers, one or two for a
+  // sloped one). The column's emitter has area s^2 / |n_a| per unit coverage: the frontmost
+  // voxel of the column (the one the normal leaves through) injects it, the others nothing.
+  int a = dominant_axis(v.normal);
+  ivec3 front = c.xyz;
+  front[a] += v.normal[a] > 0.0 ? 1 : -1;
+  if (lpv_inside(front) && emits_towards(voxel_texel(front, level), a, v.normal[a])) return v;
   v.position = voxel_level_min(level) + (vec3(c.xyz) + 0.5 + voxel_plane_offset(n) * v.normal) * s;
-  v.flux = SH_PI * le * s * s;
+  v.flux = SH_PI * le * s * s / abs(v.normal[a]);
   v.valid = true;
   return v;
 }

@@ -15,10 +15,10 @@
 namespace voxgi::test {
 namespace {
 
-// Five octree levels over `resolution`^3 cells, 4 steps each (seed 002's setting).
+// Five octree levels over `resolution`^3 cells, 8 steps each (graphs/lpv.json's octree).
 VoxelGiSetup lpv_octree_gi_setup(uint32_t resolution, const std::string& merge) {
   constexpr int kOctreeLevels = 5;
-  VoxelGiSetup gi = lpv_gi_setup(resolution, 4);
+  VoxelGiSetup gi = lpv_gi_setup(resolution, 8);
   gi.overrides.insert_or_assign("lpv.octree_levels", std::to_string(kOctreeLevels));
   gi.overrides.insert_or_assign("propagate.merge", merge);
   gi.overrides.insert_or_assign("merge.merge", merge);
@@ -61,7 +61,7 @@ TEST_F(GpuTest, LpvReceiverOverASquareThroughTwoCascades) {
   expect_lit_square_matches_closed_form(gi, SquareLight::Directional, kLpvLitSquareTolerance);
 }
 
-// The octree LPV (levels 32 to 2, 4 steps each, shells merge) over the lit square.
+// The octree LPV (levels 32 to 2, 8 steps each, shells merge) over the lit square.
 TEST_F(GpuTest, LpvOctreeReceiverOverASquareUnderADirectionalLight) {
   expect_lit_square_matches_closed_form(lpv_octree_gi_setup(32, "shells"), SquareLight::Directional,
                                         kLpvLitSquareTolerance);

@@ -179,6 +179,25 @@ double accumulated_flux(RenderHarness& harness) {
   return sum * 2.0 * std::sqrt(std::numbers::pi);  // 4 pi Y0
 }
 
+// A 10 cm patch of emitter (L_e 1, one sided) with edges `edge` and 10 cm along z from
+// `corner`, alone in a 2 m volume (two specks set its bounds) of 16^3 cells, through the
+// propagation-test graph with no steps yet.
+RenderSetup emitter_in_free_space(glm::vec3 corner, glm::vec3 edge) {
+  SceneBuilder b("free_space");
+  const int emitter = b.add_material(matte(glm::vec3(0.0f), glm::vec3(1.0f)));
+  const int speck = b.add_material(matte(glm::vec3(0.5f)));
+  b.add_quad("emitter", corner, {0, 0, 0.1f}, edge, emitter);
+  b.add_quad("low", {-1.0f, -1.0f, -1.0f}, {0, 0, 0.01f}, {0.01f, 0, 0}, speck);
+  b.add_quad("high", {0.99f, 1.0f, 0.99f}, {0, 0, 0.01f}, {0.01f, 0, 0}, speck);
+  b.add_camera("view", {0, 0, 2}, {0, 0, 0}, 0.8f);
+  RenderSetup setup;
+  setup.graph = "tests/lpv/graphs/propagation.json";
+  setup.scene_data = b.finish();
+  setup.width = setup.height = 16;
+  setup.overrides = {{"voxel.resolution", "16"}, {"lpv.iterations", "0"}};
+  return setup;
+}
+
 // Free space: one small emissive patch far from everything else (two specks set the volume's
 // bounds), no geometry volume. At factor 1 an iteration carries the flux it received to the
 // neighbours (the 30 faces cover the sphere once): while the light is inside the volume (the
@@ -187,20 +206,7 @@ double accumulated_flux(RenderHarness& harness) {
 // Once the light leaves, what stays is the two-band SH's negative back lobe (docs/lpv.md,
 // "Negative flux"): the iterations' flux falls below zero, which is printed.
 TEST_F(GpuTest, LpvFreeSpacePropagationGainsNoFlux) {
-  SceneBuilder b("free_space");
-  const int emitter = b.add_material(matte(glm::vec3(0.0f), glm::vec3(1.0f)));
-  const int speck = b.add_material(matte(glm::vec3(0.5f)));
-  b.add_quad("emitter", {-0.05f, 0.0f, -0.05f}, {0, 0, 0.1f}, {0.1f, 0, 0}, emitter);
-  b.add_quad("low", {-1.0f, -1.0f, -1.0f}, {0, 0, 0.01f}, {0.01f, 0, 0}, speck);
-  b.add_quad("high", {0.99f, 1.0f, 0.99f}, {0, 0, 0.01f}, {0.01f, 0, 0}, speck);
-  b.add_camera("view", {0, 0, 2}, {0, 0, 0}, 0.8f);
-  RenderSetup setup;
-  setup.graph = "tests/lpv/graphs/propagation.json";
-  setup.scene_data = b.finish();
-  setup.width = setup.height = 16;
-  setup.overrides["voxel.resolution"] = "16";
-  setup.overrides["lpv.iterations"] = "0";
-  RenderHarness harness(setup);
+  RenderHarness harness(emitter_in_free_space({-0.05f, 0.0f, -0.05f}, {0.1f, 0.0f, 0.0f}));
   harness.render();
   const double injected = accumulated_flux(harness);
   ASSERT_GT(injected, 0.0) << "the emitter injected nothing";
@@ -237,19 +243,7 @@ TEST_F(GpuTest, LpvEmittersInjectTheirOwnFlux) {
       {"tilted 30 degrees", {-0.05f, 0.06f, -0.05f}, {0.0866025f, 0.05f, 0.0f}},
   };
   for (const Case& c : cases) {
-    SceneBuilder b("emitter");
-    const int emitter = b.add_material(matte(glm::vec3(0.0f), glm::vec3(1.0f)));
-    const int speck = b.add_material(matte(glm::vec3(0.5f)));
-    b.add_quad("emitter", c.corner, {0, 0, 0.1f}, c.edge, emitter);
-    b.add_quad("low", {-1.0f, -1.0f, -1.0f}, {0, 0, 0.01f}, {0.01f, 0, 0}, speck);
-    b.add_quad("high", {0.99f, 1.0f, 0.99f}, {0, 0, 0.01f}, {0.01f, 0, 0}, speck);
-    b.add_camera("view", {0, 0, 2}, {0, 0, 0}, 0.8f);
-    RenderSetup setup;
-    setup.graph = "tests/lpv/graphs/propagation.json";
-    setup.scene_data = b.finish();
-    setup.width = setup.height = 16;
-    setup.overrides = {{"voxel.resolution", "16"}, {"lpv.iterations", "0"}};
-    RenderHarness harness(setup);
+    RenderHarness harness(emitter_in_free_space(c.corner, c.edge));
     harness.render();
     const double injected = accumulated_flux(harness);
     const double expected = std::numbers::pi * 1.0 * 0.1 * 0.1;

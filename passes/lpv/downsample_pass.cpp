@@ -97,13 +97,8 @@ void register_downsample(graph::Registry& registry) {
       "(LPVDownsample, GVDownsample)";
   info.inputs = {
       contracts::clipmap_info_input(),
-      {"injected",
-       graph::kinds(graph::ResourceKind::Buffer),
-       graph::Access::StorageRead,
-       graph::kStageCompute,
-       {},
-       false,
-       "lpv.inject's fixed-point intensities"},
+      lpv_buffer_slot("injected", graph::Access::StorageRead,
+                      "lpv.inject's fixed-point intensities"),
       graph::sampled_clipmap_input(
           "albedo", "voxel opacity (a): the LPV has one cell per voxel of this clipmap", false,
           {contracts::kVoxelAlbedoFormat, VK_FORMAT_R16G16B16A16_SFLOAT}),
@@ -111,14 +106,10 @@ void register_downsample(graph::Registry& registry) {
                                    {contracts::kVoxelNormalFormat, VK_FORMAT_R32G32B32A32_SFLOAT}),
   };
   info.outputs = {
-      {"levels",
-       graph::kinds(graph::ResourceKind::Buffer),
-       graph::Access::StorageWrite,
-       graph::kStageCompute,
-       {},
-       false,
-       "per cell of every octree level: the injected SH, the index mark and the geometry "
-       "(lpv/cells.glsl)"},
+      lpv_buffer_slot(
+          "levels", graph::Access::StorageWrite,
+          "per cell of every octree level: the injected SH, the index mark and the geometry "
+          "(lpv/cells.glsl)"),
   };
   info.params = {
       octree_levels_param(),

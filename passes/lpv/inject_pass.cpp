@@ -82,7 +82,8 @@ class InjectPass final : public graph::Pass {
     const uint32_t stride = static_cast<uint32_t>(ctx.integer("stride"));
     const uint32_t edge = std::max(1u, flux.info->extent.width / stride);
     const uint64_t texels = uint64_t(edge) * edge * flux.info->array_layers;
-    const uint64_t emitters = has_emission_ ? cells : 0;
+    const uint64_t emitters =
+        has_emission_ ? lpv_voxel_count(*ctx.resource("voxel_normal").info) : 0;
     InjectPush push{0,
                     stride,
                     edge,
@@ -120,7 +121,7 @@ void register_inject(graph::Registry& registry) {
   info.type = "lpv.inject";
   info.doc =
       "Reflective-shadow-map texels and emissive voxels as Lambertian virtual point lights into "
-      "the LPV cells, deterministic fixed point";
+      "the LPV cells (seed 002's LPVInject), deterministic fixed point";
   info.inputs = {
       contracts::clipmap_info_input(),
       graph::sampled_2d_input("rsm_flux", "lpv.rsm's reflected flux", false,
@@ -137,13 +138,8 @@ void register_inject(graph::Registry& registry) {
       graph::sampled_clipmap_input(
           "emission", "voxel emitted radiance; unbound: no emitters inject", true, kFloatRgba),
   };
-  info.outputs = {{"injected",
-                   graph::kinds(graph::ResourceKind::Buffer),
-                   graph::Access::StorageWrite,
-                   graph::kStageCompute,
-                   {},
-                   false,
-                   "fixed-point SH intensity per cell (lpv/cells.glsl)"}};
+  info.outputs = {lpv_buffer_slot("injected", graph::Access::StorageWrite,
+                                  "fixed-point SH intensity per cell (lpv/cells.glsl)")};
   info.params = {
       {"stride",
        graph::ParamType::Int,

@@ -78,13 +78,8 @@ void register_lookup(graph::Registry& registry) {
   using contracts::GbufferTarget;
   info.inputs = {
       contracts::clipmap_info_input(),
-      {"radiance",
-       graph::kinds(graph::ResourceKind::Buffer),
-       graph::Access::StorageRead,
-       graph::kStageCompute,
-       {},
-       false,
-       "lpv.merge's volume: accumulated intensities, stopped flux, geometry"},
+      lpv_buffer_slot("radiance", graph::Access::StorageRead,
+                      "lpv.merge's volume: accumulated intensities, stopped flux, geometry"),
       contracts::gbuffer_input(GbufferTarget::BaseColor),
       contracts::gbuffer_input(GbufferTarget::Normal),
       contracts::gbuffer_input(GbufferTarget::Material),

@@ -48,13 +48,20 @@ uint64_t lpv_cell_count(const graph::ResourceInfo& clipmap) {
 }
 
 uint64_t lpv_octree_cell_count(const graph::ResourceInfo& clipmap, uint32_t octree_levels) {
-  if (clipmap.kind != graph::ResourceKind::Clipmap) return 0;
+  if (clipmap.kind != graph::ResourceKind::Clipmap || clipmap.clipmap_levels == 0) return 0;
+  const uint64_t cascades = 2 * uint64_t(clipmap.clipmap_levels) - 1;
   uint64_t cells = 0;
   for (uint32_t o = 0; o < octree_levels; ++o) {
     const uint64_t r = clipmap.extent.width >> o;
-    cells += r * r * r * clipmap.clipmap_levels;
+    cells += r * r * r * cascades;
   }
   return cells;
+}
+
+uint64_t lpv_voxel_count(const graph::ResourceInfo& clipmap) {
+  if (clipmap.kind != graph::ResourceKind::Clipmap) return 0;
+  const uint64_t r = clipmap.extent.width;
+  return r * r * r * clipmap.clipmap_levels;
 }
 
 graph::SizeRule lpv_buffer_size(LpvBuffer buffer, const char* clipmap_slot) {
@@ -85,6 +92,18 @@ void check_lpv_buffer(graph::PassCheck& check, LpvBuffer buffer, const char* slo
   check.slot_error(slot, "buffer '" + bound.name + "' holds " + std::to_string(bound.buffer_size) +
                              " bytes, but " + layout_text(buffer) + " for the cells of '" +
                              clipmap.name + "' need " + std::to_string(need));
+}
+
+graph::SlotSpec lpv_buffer_slot(const char* name, graph::Access access, const char* doc,
+                                bool scratch) {
+  graph::SlotSpec slot;
+  slot.name = name;
+  slot.kinds = graph::kinds(graph::ResourceKind::Buffer);
+  slot.access = access;
+  slot.stages = graph::kStageCompute;
+  slot.doc = doc;
+  slot.scratch = scratch;
+  return slot;
 }
 
 graph::ParamSpec octree_levels_param() {

@@ -4,8 +4,10 @@
 //
 // The LPV has one cell per voxel of each level of the voxel clipmap it is bound with (one
 // level: a single volume fitted to the scene; several: cascades that follow the camera,
-// snapped to their cell as the clipmap's windows are). Cells are counted in window order,
-// cascade by cascade: cell = ((cascade * R + z) * R + y) * R + x.
+// snapped to their cell as the clipmap's windows are). A clipmap of L levels gives 2 L - 1
+// volumes (cascades): the L levels with the light of all sources in their window, then levels
+// 1 .. L - 1 with only the sources outside the next finer window. Cells are counted in window
+// order, cascade by cascade: cell = ((cascade * R + z) * R + y) * R + x.
 //
 // The octree LPV (seed 002 sec. 4.2) adds, per cascade, the levels R/2, R/4, ... after those
 // cells: octree level o has (R >> o)^3 cells per cascade, counted the same way from the end of
@@ -42,10 +44,14 @@ inline constexpr uint32_t kMaxOctreeLevels = 8;
 enum class LpvBuffer { Injected, Levels, Work, Radiance };
 VkDeviceSize lpv_buffer_bytes(LpvBuffer buffer, uint64_t cells);
 
-// R^3 x levels of a clipmap resource; 0 for anything else.
+// The level-0 cells of every cascade over a clipmap of L levels: R^3 x (2 L - 1) (the L levels'
+// volumes of all light sources, then L - 1 of the sources outside the next finer window); 0
+// for anything but a clipmap.
 uint64_t lpv_cell_count(const graph::ResourceInfo& clipmap);
-// The cells of `octree_levels` octree levels over the clipmap (its own cells at 1).
+// The cells of `octree_levels` octree levels of every cascade (lpv_cell_count's at 1).
 uint64_t lpv_octree_cell_count(const graph::ResourceInfo& clipmap, uint32_t octree_levels);
+// The clipmap's voxels, R^3 x L.
+uint64_t lpv_voxel_count(const graph::ResourceInfo& clipmap);
 
 // The size rule of an LPV buffer over the clipmap bound to `clipmap_slot` (with the pass's
 // "octree_levels" parameter for Levels and Work), and the validate check that reports `slot`
@@ -58,6 +64,10 @@ void check_lpv_buffer(graph::PassCheck& check, LpvBuffer buffer, const char* slo
 // halves it: R must be divisible by 2^(levels - 1)).
 graph::ParamSpec octree_levels_param();
 void check_octree_levels(graph::PassCheck& check, const char* clipmap_slot);
+
+// A storage-buffer slot of a compute pass (every LPV buffer is one).
+graph::SlotSpec lpv_buffer_slot(const char* name, graph::Access access, const char* doc,
+                                bool scratch = false);
 
 // The "merge" parameter of lpv.propagate and lpv.merge: how the octree levels combine.
 graph::ParamSpec merge_param();

@@ -72,25 +72,15 @@ void register_merge(graph::Registry& registry) {
       "by the index volume (eq. 10) or as distance shells; a copy for the uniform LPV";
   info.inputs = {
       contracts::clipmap_info_input(),
-      {"levels",
-       graph::kinds(graph::ResourceKind::Buffer),
-       graph::Access::StorageRead,
-       graph::kStageCompute,
-       {},
-       false,
-       "lpv.propagate's accumulated levels"},
+      lpv_buffer_slot("levels", graph::Access::StorageRead, "lpv.propagate's accumulated levels"),
       graph::sampled_clipmap_input("voxels",
                                    "the clipmap whose voxels are the LPV's cells (its layout)"),
   };
   info.outputs = {
-      {"radiance",
-       graph::kinds(graph::ResourceKind::Buffer),
-       graph::Access::StorageWrite,
-       graph::kStageCompute,
-       {},
-       false,
-       "per level-0 cell: SH intensity, stopped flux and the level it took, geometry "
-       "(lpv/cells.glsl)"},
+      lpv_buffer_slot(
+          "radiance", graph::Access::StorageWrite,
+          "per level-0 cell: SH intensity, stopped flux and the level it took, geometry "
+          "(lpv/cells.glsl)"),
   };
   info.params = {octree_levels_param(), merge_param()};
   graph::set_size_rule(info, "radiance", lpv_buffer_size(LpvBuffer::Radiance, "voxels"));

@@ -130,37 +130,23 @@ void register_propagate(graph::Registry& registry) {
   graph::PassTypeInfo info;
   info.type = "lpv.propagate";
   info.doc =
-      "LPV propagation: 6 neighbours x 5 faces with exact face integrals, optional "
-      "geometry-volume occlusion from the voxels, every iteration accumulated";
+      "LPV propagation on every octree level (seed 002's LPVPropagate): 6 neighbours x 5 faces "
+      "with exact face integrals, blocked by lpv.downsample's geometry volume, every step "
+      "accumulated";
   info.inputs = {
       contracts::clipmap_info_input(),
-      {"injected_levels",
-       graph::kinds(graph::ResourceKind::Buffer),
-       graph::Access::StorageRead,
-       graph::kStageCompute,
-       {},
-       false,
-       "lpv.downsample's injected levels and geometry volume"},
+      lpv_buffer_slot("injected_levels", graph::Access::StorageRead,
+                      "lpv.downsample's injected levels and geometry volume"),
       graph::sampled_clipmap_input("voxels",
                                    "the clipmap whose voxels are the LPV's cells (its layout)"),
   };
   info.outputs = {
-      {"levels",
-       graph::kinds(graph::ResourceKind::Buffer),
-       graph::Access::StorageWrite,
-       graph::kStageCompute,
-       {},
-       false,
-       "per cell of every octree level: accumulated SH intensity, the flux its geometry "
-       "stopped and the index mark, its geometry (lpv/cells.glsl)"},
-      {"work",
-       graph::kinds(graph::ResourceKind::Buffer),
-       graph::Access::StorageWrite,
-       graph::kStageCompute,
-       {},
-       false,
-       "two propagation states per cell of every octree level",
-       true},
+      lpv_buffer_slot(
+          "levels", graph::Access::StorageWrite,
+          "per cell of every octree level: accumulated SH intensity, the flux its geometry "
+          "stopped and the index mark, its geometry (lpv/cells.glsl)"),
+      lpv_buffer_slot("work", graph::Access::StorageWrite,
+                      "two propagation states per cell of every octree level", true),
   };
   info.params = {
       {"iterations",

@@ -158,8 +158,9 @@ void register_rsm(graph::Registry& registry) {
   graph::PassTypeInfo info;
   info.type = "lpv.rsm";
   info.doc =
-      "Reflective shadow maps: per light (directional: fitted orthographic, spot: perspective, "
-      "point: six 90-degree faces) the first surfaces' position, normal and reflected flux";
+      "Reflective shadow maps (seed 002's RSMCreate): per light (directional: fitted "
+      "orthographic, spot: perspective, point: six 90-degree faces) the first surfaces' "
+      "position, normal and reflected flux";
   info.outputs = {
       rsm_target("flux", kRsmFluxFormat,
                  "rgb reflected flux per texel (W), a 1 where a surface is"),

@@ -1,12 +1,27 @@
 #ifndef VOXGI_LPV_CELLS_GLSL
 #define VOXGI_LPV_CELLS_GLSL
 // Cells of the LPV (C++ twin: passes/lpv/lpv_layout.hpp): one per voxel of each level of the
-// voxel clipmap (a cascade), in window order (not toroidal: the LPV is rebuilt whenever a
-// window moves),
+// voxel clipmap, in window order (not toroidal: the LPV is rebuilt whenever a window moves).
+// Its volumes ("cascades") are, for a clipmap of L levels, first the L levels holding the light
+// of every light source inside their window ("all"), then the levels 1 .. L-1 again holding
+// only the light of the sources inside their window but outside the next finer one ("outer"):
+// a pixel whose finest level is f adds f's "all" to the "outer" volumes of the levels above,
+// so that every source is counted once, by the finest level that holds it (lpv/lookup.comp).
 //   cell = ((cascade * R + z) * R + y) * R + x,
 // then the octree levels o = 1, 2, ... (seed 002 sec. 4.2) of (R >> o)^3 cells per cascade,
 // each counted the same way from the end of the level before.
 // Include after contracts/voxel_clipmap.glsl.
+
+// The LPV's volumes: 2 L - 1 for a clipmap of L levels.
+int lpv_cascade_count() { return 2 * voxel_level_count() - 1; }
+// The clipmap level of a volume.
+int lpv_cascade_level(int cascade) {
+  int levels = voxel_level_count();
+  return cascade < levels ? cascade : cascade - levels + 1;
+}
+// The volume of level `level` (>= 1) that holds only the light of sources outside the window of
+// level - 1.
+int lpv_outer_cascade(int level) { return voxel_level_count() + level - 1; }
 
 // vec4s per cell record (lpv.downsample's injected levels, lpv.propagate's accumulated levels,
 // lpv.merge's radiance): SH intensity r, g, b; the flux the cell's geometry stopped (rgb) and
@@ -14,14 +29,15 @@
 // merge, the level the cell took); the cell's geometry (xyz mean normal, w opacity).
 const int LPV_RECORD_VEC4S = 5;
 
-int lpv_cell(ivec3 c, int level) {
+int lpv_cell(ivec3 c, int cascade) {
   int r = voxel_resolution();
-  return ((level * r + c.z) * r + c.y) * r + c.x;
+  return ((cascade * r + c.z) * r + c.y) * r + c.x;
 }
 
 bool lpv_inside(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(voxel_resolution()))); }
 
-// The cell and level of a linear invocation index over all cells.
+// The cell and cascade of a linear index over the level-0 cells of every cascade (the voxels of
+// every clipmap level, for the first L cascades).
 ivec4 lpv_cell_coords(uint index) {
   int r = voxel_resolution();
   int i = int(index);
@@ -29,6 +45,12 @@ ivec4 lpv_cell_coords(uint index) {
 }
 
 int lpv_cell_total() {
+  int r = voxel_resolution();
+  return r * r * r * lpv_cascade_count();
+}
+
+// The voxels of every clipmap level.
+int lpv_voxel_total() {
   int r = voxel_resolution();
   return r * r * r * voxel_level_count();
 }
@@ -40,7 +62,7 @@ int lpv_level_base(int o) {
   int base = 0;
   for (int i = 0; i < o; ++i) {
     int n = lpv_level_resolution(i);
-    base += n * n * n * voxel_level_count();
+    base += n * n * n * lpv_cascade_count();
   }
   return base;
 }
@@ -68,7 +90,7 @@ LpvOctreeCell lpv_octree_coords(int index, int levels) {
   int base = 0;
   for (int o = 0; o < levels; ++o) {
     int n = lpv_level_resolution(o);
-    int count = n * n * n * voxel_level_count();
+    int count = n * n * n * lpv_cascade_count();
     if (index < base + count) {
       int i = index - base;
       cell.c = ivec3(i % n, (i / n) % n, (i / (n * n)) % n);

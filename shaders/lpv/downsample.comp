@@ -92,7 +92,7 @@ void main() {
     }
     vec4 geometry = vec4(0.0);
 #if HAS_OCCLUSION
-    geometry = voxel_geometry(cell.c, cell.cascade);
+    geometry = voxel_geometry(cell.c, lpv_cascade_level(cell.cascade));
 #endif
     write_record(index, sh, geometry, 0);
     return;
@@ -100,7 +100,7 @@ void main() {
 
   int level = int(pc.level);
   int n = lpv_level_resolution(level);
-  int count = n * n * n * voxel_level_count();
+  int count = n * n * n * lpv_cascade_count();
   if (index >= count) return;
   int i = index;
   ivec3 c = ivec3(i % n, (i / n) % n, (i / (n * n)) % n);

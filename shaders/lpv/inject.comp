@@ -5,10 +5,11 @@
 // flux Phi = stride^2 x its texel's flux (the injected texel stands for stride^2 texels: the
 // solid angle is that of the injected resolution), radiant intensity (Phi / pi) max(0, n.w),
 // placed half a cell along its normal, into the cell that holds it on every level whose window
-// contains it. Emissive voxels inject the flux of the emitter in their column, pi x L_e x
+// contains it (and into that level's "outer" volume when the next finer window does not,
+// lpv/cells.glsl). Emissive voxels inject the flux of the emitter in their column, pi x L_e x
 // (voxel edge)^2 / |n_a|, from the frontmost voxel of the column, on their own level (see
-// emission_vpl). Sums are fixed point (shaders/lpv/cells.glsl), so the result does not depend on the
-// order threads run in.
+// emission_vpl). Sums are fixed point (shaders/lpv/cells.glsl), so the result does not depend
+// on the order threads run in.
 //
 // MODE 0: clears the buffer and writes the header's contribution count.
 // MODE 1: the largest coefficient magnitude of any contribution (atomicMax on float bits,
@@ -136,16 +137,30 @@ void add(int cell, Vpl v, float scale) {
   }
 }
 
+// The cell of `level` a VPL goes into, `normal_offset` cells along its normal; false when the
+// level's window does not hold it.
+bool vpl_cell(Vpl v, int level, out ivec3 cell) {
+  cell = ivec3(0);
+  if (!voxel_level_valid(level)) return false;
+  float s = voxel_size(level);
+  cell = ivec3(floor(voxel_window_coord(v.position + v.normal * (pc.normal_offset * s), level)));
+  return lpv_inside(cell);
+}
+
+// Into the "all" volume of every level in [first_level, last_level] whose window holds the
+// VPL, and into the level's "outer" volume when the next finer window does not hold it
+// (lpv/cells.glsl).
 void inject(Vpl v, int first_level, int last_level) {
   float scale = lpv_fixed_point_scale(injected.max_magnitude_bits, injected.contributions);
   if (scale <= 0.0) return;
   for (int level = first_level; level <= last_level; ++level) {
-    if (!voxel_level_valid(level)) continue;
-    float s = voxel_size(level);
-    vec3 c = voxel_window_coord(v.position + v.normal * (pc.normal_offset * s), level);
-    ivec3 cell = ivec3(floor(c));
-    if (!lpv_inside(cell)) continue;
+    ivec3 cell;
+    if (!vpl_cell(v, level, cell)) continue;
     add(lpv_cell(cell, level), v, scale);
+    ivec3 finer;
+    if (level > 0 && !vpl_cell(v, level - 1, finer)) {
+      add(lpv_cell(cell, lpv_outer_cascade(level)), v, scale);
+    }
   }
 }
 
@@ -171,7 +186,7 @@ void main() {
   } else {
 #if HAS_EMISSION
     uint voxel = index - first_voxel;
-    if (voxel >= uint(lpv_cell_total())) return;
+    if (voxel >= uint(lpv_voxel_total())) return;
     v = emission_vpl(voxel, level);
 #else
     return;

@@ -7,8 +7,9 @@
 // around -n; the pixel's outgoing radiance is c_diff / pi x E. The SH is interpolated
 // trilinearly between cell centres at the surface moved `normal_offset` cells along its
 // normal (so a wall reads the cells in front of it, not its own: back-bleeding, seed sec.
-// 6.1), on the finest level whose window holds it, blended into the next level over the last
-// two cells before the window's edge.
+// 6.1), on the finest level whose window holds it, plus the light the coarser levels carry from
+// outside that window, blended into the next level over the last two cells before the window's
+// edge.
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
 #include "lpv/sh.glsl"
@@ -35,9 +36,9 @@ layout(push_constant) uniform Push {
   float pad2;
 } pc;
 
-// Irradiance at the anchor-relative point q from level `level`, trilinear between cell centres
-// (clamped to the window).
-vec3 level_irradiance(vec3 q, vec3 n, int level) {
+// Irradiance at the anchor-relative point q from volume `cascade` of level `level`
+// (lpv/cells.glsl), trilinear between cell centres (clamped to the window).
+vec3 level_irradiance(vec3 q, vec3 n, int level, int cascade) {
   int r = voxel_resolution();
   float s = voxel_size(level);
   vec3 coord = voxel_window_coord(q, level) - 0.5;
@@ -51,7 +52,7 @@ vec3 level_irradiance(vec3 q, vec3 n, int level) {
     vec3 w3 = mix(vec3(1.0) - t, t, vec3(o));
     float w = w3.x * w3.y * w3.z;
     if (w <= 0.0) continue;
-    int cell = lpv_cell(c, level);
+    int cell = lpv_cell(c, cascade);
     int at = cell * LPV_RECORD_VEC4S;
     e += w * vec3(dot(accumulated[at], cosine), dot(accumulated[at + 1], cosine),
                   dot(accumulated[at + 2], cosine));
@@ -59,10 +60,10 @@ vec3 level_irradiance(vec3 q, vec3 n, int level) {
   return max(e, vec3(0.0)) / (s * s);
 }
 
-// Irradiance from the flux the geometry stopped: the cells around p whose surface faces the
-// same way as n, trilinearly weighted, each giving stopped flux / s^2. Returns false where no
-// such cell is near.
-bool surface_irradiance(vec3 p, vec3 n, int level, out vec3 e) {
+// Irradiance from the flux the geometry stopped in volume `cascade` of level `level`: the cells
+// around p whose surface faces the same way as n, trilinearly weighted, each giving stopped
+// flux / s^2. Returns false where no such cell is near.
+bool surface_irradiance(vec3 p, vec3 n, int level, int cascade, out vec3 e) {
   int r = voxel_resolution();
   float s = voxel_size(level);
   vec3 coord = voxel_window_coord(p, level) - 0.5;
@@ -76,7 +77,7 @@ bool surface_irradiance(vec3 p, vec3 n, int level, out vec3 e) {
     if (!lpv_inside(c)) continue;
     vec3 w3 = mix(vec3(1.0) - t, t, vec3(o));
     float w = w3.x * w3.y * w3.z;
-    int at = lpv_cell(c, level) * LPV_RECORD_VEC4S;
+    int at = lpv_cell(c, cascade) * LPV_RECORD_VEC4S;
     vec4 g = accumulated[at + 4];
     float len = length(g.xyz);
     bool same_surface = g.w > 0.0 && (len < 0.25 || dot(g.xyz, n) > 0.25 * len);
@@ -89,10 +90,22 @@ bool surface_irradiance(vec3 p, vec3 n, int level, out vec3 e) {
   return weights > 1e-4;
 }
 
-vec3 irradiance(vec3 p, vec3 n, int level) {
+vec3 volume_irradiance(vec3 p, vec3 n, int level, int cascade) {
   vec3 e;
-  if (pc.surface_flux != 0u && surface_irradiance(p, n, level, e)) return e;
-  return level_irradiance(p + n * (pc.normal_offset * voxel_size(level)), n, level);
+  if (pc.surface_flux != 0u && surface_irradiance(p, n, level, cascade, e)) return e;
+  return level_irradiance(p + n * (pc.normal_offset * voxel_size(level)), n, level, cascade);
+}
+
+// The light of the sources inside level's window, plus that of the sources outside it, which
+// each coarser level's "outer" volume holds (lpv/cells.glsl).
+vec3 irradiance(vec3 p, vec3 n, int level) {
+  vec3 e = volume_irradiance(p, n, level, level);
+  for (int coarser = level + 1; coarser < voxel_level_count(); ++coarser) {
+    if (voxel_level_valid(coarser)) {
+      e += volume_irradiance(p, n, coarser, lpv_outer_cascade(coarser));
+    }
+  }
+  return e;
 }
 
 void main() {

@@ -67,6 +67,15 @@ TEST_F(GpuTest, LpvOctreeReceiverOverASquareUnderADirectionalLight) {
                                         kLpvLitSquareTolerance);
 }
 
+// Three cascades around the camera under the receiver: the finest window holds none of the
+// square, whose light reaches the receiver through the coarser levels' "outer" volumes.
+TEST_F(GpuTest, LpvReceiverOverASquareThroughThreeCascades) {
+  VoxelGiSetup gi = lpv_gi_setup(32);
+  gi.voxel_levels = 3;
+  gi.label += ", 3 cascades";
+  expect_lit_square_matches_closed_form(gi, SquareLight::Directional, kLpvLitSquareTolerance);
+}
+
 class LpvEnergyBoundTest : public GpuTest, public ::testing::WithParamInterface<size_t> {};
 
 // The mean indirect luminance never more than kEnergyBoundTolerance above the path tracer

@@ -28,6 +28,17 @@ SlotSpec sampled_clipmap_input(const char* name, const char* doc, bool optional,
           doc};
 }
 
+SlotSpec compute_buffer_slot(const char* name, Access access, const char* doc, bool scratch) {
+  SlotSpec slot;
+  slot.name = name;
+  slot.kinds = kinds(ResourceKind::Buffer);
+  slot.access = access;
+  slot.stages = kStageCompute;
+  slot.doc = doc;
+  slot.scratch = scratch;
+  return slot;
+}
+
 std::vector<uint32_t> compile_pass_shader(const PassContext& ctx, const std::string& path,
                                           std::vector<gpu::ShaderDefine> defines) {
   gpu::ShaderRequest request;

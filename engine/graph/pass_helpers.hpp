@@ -34,6 +34,15 @@ SlotSpec sampled_2d_input(const char* name, const char* doc, bool optional = fal
 SlotSpec sampled_clipmap_input(const char* name, const char* doc, bool optional = false,
                                std::vector<VkFormat> formats = {});
 
+// A storage buffer read or written by a compute shader (`scratch`: see SlotSpec).
+SlotSpec compute_buffer_slot(const char* name, Access access, const char* doc,
+                             bool scratch = false);
+
+// Workgroups of `local` invocations that cover `n` invocations along one axis.
+inline uint32_t workgroups(uint64_t n, uint32_t local) {
+  return static_cast<uint32_t>((n + local - 1) / local);
+}
+
 // A bound resource's extent at the mip its slot is bound to.
 VkExtent3D bound_extent(const ResourceInfo& info);
 

@@ -13,7 +13,7 @@ graph::SlotSpec radiance_output(const char* name, const char* doc) {
 }
 
 void dispatch_over_image(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
-  vkCmdDispatch(cmd, (width + kTile - 1) / kTile, (height + kTile - 1) / kTile, 1);
+  vkCmdDispatch(cmd, graph::workgroups(width, kTile), graph::workgroups(height, kTile), 1);
 }
 
 }  // namespace voxgi::passes::common

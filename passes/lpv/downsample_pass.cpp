@@ -67,7 +67,7 @@ class DownsamplePass final : public graph::Pass {
     const graph::ResourceInfo& clipmap = *albedo.info;
     DownsamplePush push{0, 0, {}};
     pipeline_->push_constants(cmd, push);
-    vkCmdDispatch(cmd, groups(lpv_cell_count(clipmap), kLocal), 1, 1);
+    vkCmdDispatch(cmd, graph::workgroups(lpv_cell_count(clipmap), kLocal), 1, 1);
     const auto octree_levels = static_cast<uint32_t>(ctx.integer("octree_levels"));
     for (uint32_t level = 1; level < octree_levels; ++level) {
       ctx.barrier_within_pass("levels");
@@ -75,7 +75,7 @@ class DownsamplePass final : public graph::Pass {
       pipeline_->push_constants(cmd, push);
       const uint64_t cells =
           lpv_octree_cell_count(clipmap, level + 1) - lpv_octree_cell_count(clipmap, level);
-      vkCmdDispatch(cmd, groups(cells, kLocal), 1, 1);
+      vkCmdDispatch(cmd, graph::workgroups(cells, kLocal), 1, 1);
     }
     versions_.remember(ctx);
   }
@@ -97,8 +97,8 @@ void register_downsample(graph::Registry& registry) {
       "(LPVDownsample, GVDownsample)";
   info.inputs = {
       contracts::clipmap_info_input(),
-      lpv_buffer_slot("injected", graph::Access::StorageRead,
-                      "lpv.inject's fixed-point intensities"),
+      graph::compute_buffer_slot("injected", graph::Access::StorageRead,
+                                 "lpv.inject's fixed-point intensities"),
       graph::sampled_clipmap_input(
           "albedo", "voxel opacity (a): the LPV has one cell per voxel of this clipmap", false,
           {contracts::kVoxelAlbedoFormat, VK_FORMAT_R16G16B16A16_SFLOAT}),
@@ -106,7 +106,7 @@ void register_downsample(graph::Registry& registry) {
                                    {contracts::kVoxelNormalFormat, VK_FORMAT_R32G32B32A32_SFLOAT}),
   };
   info.outputs = {
-      lpv_buffer_slot(
+      graph::compute_buffer_slot(
           "levels", graph::Access::StorageWrite,
           "per cell of every octree level: the injected SH, the index mark and the geometry "
           "(lpv/cells.glsl)"),

@@ -97,7 +97,7 @@ class InjectPass final : public graph::Pass {
     const auto dispatch = [&](uint32_t mode, uint64_t invocations) {
       push.mode = mode;
       pipeline_->push_constants(cmd, push);
-      if (invocations > 0) vkCmdDispatch(cmd, groups(invocations, kLocal), 1, 1);
+      if (invocations > 0) vkCmdDispatch(cmd, graph::workgroups(invocations, kLocal), 1, 1);
       ctx.barrier_within_pass("injected");
     };
     dispatch(0, cells * kCoefficientsPerCell);
@@ -138,8 +138,8 @@ void register_inject(graph::Registry& registry) {
       graph::sampled_clipmap_input(
           "emission", "voxel emitted radiance; unbound: no emitters inject", true, kFloatRgba),
   };
-  info.outputs = {lpv_buffer_slot("injected", graph::Access::StorageWrite,
-                                  "fixed-point SH intensity per cell (lpv/cells.glsl)")};
+  info.outputs = {graph::compute_buffer_slot("injected", graph::Access::StorageWrite,
+                                             "fixed-point SH intensity per cell (lpv/cells.glsl)")};
   info.params = {
       {"stride",
        graph::ParamType::Int,

@@ -60,7 +60,7 @@ class LookupPass final : public graph::Pass {
                                               ctx.choice("irradiance") == "surface_flux" ? 1u : 0u,
                                               {}});
     const VkExtent3D e = out.info->extent;
-    vkCmdDispatch(cmd, groups(e.width, kTile), groups(e.height, kTile), 1);
+    vkCmdDispatch(cmd, graph::workgroups(e.width, kTile), graph::workgroups(e.height, kTile), 1);
   }
 
  private:
@@ -78,8 +78,9 @@ void register_lookup(graph::Registry& registry) {
   using contracts::GbufferTarget;
   info.inputs = {
       contracts::clipmap_info_input(),
-      lpv_buffer_slot("radiance", graph::Access::StorageRead,
-                      "lpv.merge's volume: accumulated intensities, stopped flux, geometry"),
+      graph::compute_buffer_slot(
+          "radiance", graph::Access::StorageRead,
+          "lpv.merge's volume: accumulated intensities, stopped flux, geometry"),
       contracts::gbuffer_input(GbufferTarget::BaseColor),
       contracts::gbuffer_input(GbufferTarget::Normal),
       contracts::gbuffer_input(GbufferTarget::Material),

@@ -1,5 +1,6 @@
 #include "passes/lpv/lpv_layout.hpp"
 
+#include <bit>
 #include <string>
 
 namespace voxgi::passes::lpv {
@@ -94,18 +95,6 @@ void check_lpv_buffer(graph::PassCheck& check, LpvBuffer buffer, const char* slo
                              clipmap.name + "' need " + std::to_string(need));
 }
 
-graph::SlotSpec lpv_buffer_slot(const char* name, graph::Access access, const char* doc,
-                                bool scratch) {
-  graph::SlotSpec slot;
-  slot.name = name;
-  slot.kinds = graph::kinds(graph::ResourceKind::Buffer);
-  slot.access = access;
-  slot.stages = graph::kStageCompute;
-  slot.doc = doc;
-  slot.scratch = scratch;
-  return slot;
-}
-
 graph::ParamSpec octree_levels_param() {
   return {"octree_levels",
           graph::ParamType::Int,
@@ -144,7 +133,7 @@ void check_octree_levels(graph::PassCheck& check, const char* clipmap_slot) {
                                            std::to_string(r) + " cells per side of '" +
                                            clipmap.name + "' " + std::to_string(levels - 1) +
                                            " times, which does not divide them; use " + "at most " +
-                                           std::to_string(1 + __builtin_ctz(r)) + " levels");
+                                           std::to_string(1 + std::countr_zero(r)) + " levels");
   }
 }
 

@@ -65,15 +65,7 @@ void check_lpv_buffer(graph::PassCheck& check, LpvBuffer buffer, const char* slo
 graph::ParamSpec octree_levels_param();
 void check_octree_levels(graph::PassCheck& check, const char* clipmap_slot);
 
-// A storage-buffer slot of a compute pass (every LPV buffer is one).
-graph::SlotSpec lpv_buffer_slot(const char* name, graph::Access access, const char* doc,
-                                bool scratch = false);
-
 // The "merge" parameter of lpv.propagate and lpv.merge: how the octree levels combine.
 graph::ParamSpec merge_param();
-
-inline uint32_t groups(uint64_t n, uint32_t local) {
-  return static_cast<uint32_t>((n + local - 1) / local);
-}
 
 }  // namespace voxgi::passes::lpv

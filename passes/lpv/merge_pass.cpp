@@ -53,7 +53,8 @@ class MergePass final : public graph::Pass {
                          static_cast<uint32_t>(ctx.integer("octree_levels")),
                          {}};
     pipeline_->push_constants(cmd, push);
-    vkCmdDispatch(cmd, groups(lpv_cell_count(*ctx.resource("voxels").info), kLocal), 1, 1);
+    vkCmdDispatch(cmd, graph::workgroups(lpv_cell_count(*ctx.resource("voxels").info), kLocal), 1,
+                  1);
     versions_.remember(ctx);
   }
 
@@ -72,12 +73,13 @@ void register_merge(graph::Registry& registry) {
       "by the index volume (eq. 10) or as distance shells; a copy for the uniform LPV";
   info.inputs = {
       contracts::clipmap_info_input(),
-      lpv_buffer_slot("levels", graph::Access::StorageRead, "lpv.propagate's accumulated levels"),
+      graph::compute_buffer_slot("levels", graph::Access::StorageRead,
+                                 "lpv.propagate's accumulated levels"),
       graph::sampled_clipmap_input("voxels",
                                    "the clipmap whose voxels are the LPV's cells (its layout)"),
   };
   info.outputs = {
-      lpv_buffer_slot(
+      graph::compute_buffer_slot(
           "radiance", graph::Access::StorageWrite,
           "per level-0 cell: SH intensity, stopped flux and the level it took, geometry "
           "(lpv/cells.glsl)"),

@@ -26,7 +26,7 @@ struct PropagatePush {
   float factor;
   uint32_t shell_start;
   uint32_t octree_levels;
-  uint32_t pad;
+  int32_t cell_total;
   uint32_t iterations[kMaxOctreeLevels];
 };
 
@@ -89,11 +89,12 @@ class PropagatePass final : public graph::Pass {
     push.factor = static_cast<float>(ctx.number("factor"));
     push.shell_start = shells && octree_levels > 1 ? k / 2 + 1 : 0;
     push.octree_levels = octree_levels;
+    push.cell_total = static_cast<int32_t>(begin[octree_levels]);
     for (uint32_t o = 0; o < octree_levels; ++o) push.iterations[o] = steps[o];
     const auto dispatch = [&](uint64_t first, uint64_t end) {
       push.cell_begin = static_cast<int32_t>(first);
       pipeline_->push_constants(cmd, push);
-      vkCmdDispatch(cmd, groups(end - first, kLocal), 1, 1);
+      vkCmdDispatch(cmd, graph::workgroups(end - first, kLocal), 1, 1);
     };
     dispatch(0, begin[octree_levels]);
     const uint32_t last_step = *std::max_element(steps.begin(), steps.end());
@@ -135,18 +136,18 @@ void register_propagate(graph::Registry& registry) {
       "accumulated";
   info.inputs = {
       contracts::clipmap_info_input(),
-      lpv_buffer_slot("injected_levels", graph::Access::StorageRead,
-                      "lpv.downsample's injected levels and geometry volume"),
+      graph::compute_buffer_slot("injected_levels", graph::Access::StorageRead,
+                                 "lpv.downsample's injected levels and geometry volume"),
       graph::sampled_clipmap_input("voxels",
                                    "the clipmap whose voxels are the LPV's cells (its layout)"),
   };
   info.outputs = {
-      lpv_buffer_slot(
+      graph::compute_buffer_slot(
           "levels", graph::Access::StorageWrite,
           "per cell of every octree level: accumulated SH intensity, the flux its geometry "
           "stopped and the index mark, its geometry (lpv/cells.glsl)"),
-      lpv_buffer_slot("work", graph::Access::StorageWrite,
-                      "two propagation states per cell of every octree level", true),
+      graph::compute_buffer_slot("work", graph::Access::StorageWrite,
+                                 "two propagation states per cell of every octree level", true),
   };
   info.params = {
       {"iterations",

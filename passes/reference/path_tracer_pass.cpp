@@ -18,6 +18,7 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/pass.hpp"
+#include "engine/graph/pass_helpers.hpp"
 #include "engine/scene/gpu_bvh.hpp"
 #include "engine/scene/gpu_scene.hpp"
 #include "passes/reference/passes.hpp"
@@ -177,7 +178,8 @@ class PathTracerPass final : public graph::Pass {
     push.node_count = bvh.node_count();
     push.emitter_count = bvh.emitter_count();
     pipeline_->push_constants(cmd, push);
-    vkCmdDispatch(cmd, (extent.width + kTile - 1) / kTile, (extent.height + kTile - 1) / kTile, 1);
+    vkCmdDispatch(cmd, graph::workgroups(extent.width, kTile),
+                  graph::workgroups(extent.height, kTile), 1);
     samples_done_ += samples;
   }
 

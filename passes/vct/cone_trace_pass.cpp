@@ -190,7 +190,7 @@ class ConeTracePass final : public graph::Pass {
       writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, trace_->layout());
       if (has_shadow_ && !half_) graph::bind_scene_set(ctx, *trace_);
       trace_->push_constants(cmd, push_for(e));
-      vkCmdDispatch(cmd, groups(e.width, kTile), groups(e.height, kTile), 1);
+      vkCmdDispatch(cmd, graph::workgroups(e.width, kTile), graph::workgroups(e.height, kTile), 1);
     }
     if (shadow_) {
       gpu::DescriptorWriter writer;
@@ -202,7 +202,7 @@ class ConeTracePass final : public graph::Pass {
       writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, shadow_->layout());
       graph::bind_scene_set(ctx, *shadow_);
       shadow_->push_constants(cmd, push_for(e));
-      vkCmdDispatch(cmd, groups(e.width, kTile), groups(e.height, kTile), 1);
+      vkCmdDispatch(cmd, graph::workgroups(e.width, kTile), graph::workgroups(e.height, kTile), 1);
     }
     if (!half_) return;
 
@@ -219,7 +219,7 @@ class ConeTracePass final : public graph::Pass {
     upsample_->push_constants(
         cmd,
         UpsamplePush{e.width, e.height, static_cast<float>(ctx.number("depth_tolerance")), 8.0f});
-    vkCmdDispatch(cmd, groups(e.width, kTile), groups(e.height, kTile), 1);
+    vkCmdDispatch(cmd, graph::workgroups(e.width, kTile), graph::workgroups(e.height, kTile), 1);
   }
 
  private:

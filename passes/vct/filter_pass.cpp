@@ -86,7 +86,7 @@ class FilterPass final : public graph::Pass {
     push(0, 0);
     for (uint32_t level = 0; level < levels; ++level) {
       pipeline_->push_constants(cmd, FilterPush{0, static_cast<int32_t>(level), 0, 0});
-      const uint32_t g = groups(r, kLocal);
+      const uint32_t g = graph::workgroups(r, kLocal);
       vkCmdDispatch(cmd, g, g, g);
       barrier();
     }
@@ -94,7 +94,8 @@ class FilterPass final : public graph::Pass {
       push(mip - 1, mip);
       const uint32_t rm = std::max(1u, r >> mip);
       pipeline_->push_constants(cmd, FilterPush{1, 0, static_cast<int32_t>(mip), 0});
-      vkCmdDispatch(cmd, groups(rm, kLocal), groups(rm, kLocal), groups(rm * levels, kLocal));
+      vkCmdDispatch(cmd, graph::workgroups(rm, kLocal), graph::workgroups(rm, kLocal),
+                    graph::workgroups(rm * levels, kLocal));
       barrier();
     }
     versions_.remember(ctx);

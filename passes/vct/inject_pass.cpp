@@ -85,7 +85,8 @@ class InjectPass final : public graph::Pass {
     graph::bind_scene_set(ctx, *pipeline_);
     pipeline_->push_constants(cmd, push);
     const VkExtent3D e = out.info->extent;
-    vkCmdDispatch(cmd, groups(e.width, kLocal), groups(e.height, kLocal), groups(e.depth, kLocal));
+    vkCmdDispatch(cmd, graph::workgroups(e.width, kLocal), graph::workgroups(e.height, kLocal),
+                  graph::workgroups(e.depth, kLocal));
     versions_.remember(ctx);
   }
 

@@ -23,8 +23,5 @@ void check_filtered_volumes_bound(graph::PassCheck& check);
 
 // Workgroup edge of the family's 2D compute shaders.
 inline constexpr uint32_t kTile = 8;
-inline uint32_t groups(uint32_t n, uint32_t local) {
-  return (n + local - 1) / local;
-}
 
 }  // namespace voxgi::passes::vct

@@ -34,19 +34,8 @@ int lpv_cell(ivec3 c, int cascade) {
   return ((cascade * r + c.z) * r + c.y) * r + c.x;
 }
 
-bool lpv_inside(ivec3 c) { return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(voxel_resolution()))); }
-
-// The cell and cascade of a linear index over the level-0 cells of every cascade (the voxels of
-// every clipmap level, for the first L cascades).
-ivec4 lpv_cell_coords(uint index) {
-  int r = voxel_resolution();
-  int i = int(index);
-  return ivec4(i % r, (i / r) % r, (i / (r * r)) % r, i / (r * r * r));
-}
-
-int lpv_cell_total() {
-  int r = voxel_resolution();
-  return r * r * r * lpv_cascade_count();
+bool lpv_inside(ivec3 c) {
+  return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, ivec3(voxel_resolution())));
 }
 
 // The voxels of every clipmap level.
@@ -67,9 +56,13 @@ int lpv_level_base(int o) {
   return base;
 }
 
+// The cell c of a cascade on a level of n cells per side whose first cell is `base`.
+int lpv_octree_cell_at(int base, int n, ivec3 c, int cascade) {
+  return base + ((cascade * n + c.z) * n + c.y) * n + c.x;
+}
+
 int lpv_octree_cell(ivec3 c, int cascade, int o) {
-  int n = lpv_level_resolution(o);
-  return lpv_level_base(o) + ((cascade * n + c.z) * n + c.y) * n + c.x;
+  return lpv_octree_cell_at(lpv_level_base(o), lpv_level_resolution(o), c, cascade);
 }
 
 bool lpv_octree_inside(ivec3 c, int o) {

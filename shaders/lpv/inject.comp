@@ -93,12 +93,14 @@ bool emits_towards(ivec3 t, int a, float side) {
 
 // An emissive voxel on its own level; position is its surface point.
 Vpl emission_vpl(uint index, out int level) {
-  ivec4 c = lpv_cell_coords(index);
-  level = c.w;
+  // Over the voxels the first cascades are the clipmap's levels (lpv/cells.glsl).
+  LpvOctreeCell cell = lpv_octree_coords(int(index), 1);
+  level = cell.cascade;
+  ivec3 c = cell.c;
   Vpl v;
   v.valid = false;
   if (level >= voxel_level_count() || !voxel_level_valid(level)) return v;
-  ivec3 t = voxel_texel(c.xyz, level);
+  ivec3 t = voxel_texel(c, level);
   vec4 n = texelFetch(voxel_normal, t, 0);
   vec3 le = max(texelFetch(voxel_emission, t, 0).rgb, vec3(0.0));
   float s = voxel_size(level);
@@ -113,10 +115,10 @@ Vpl emission_vpl(uint index, out int level) {
   // sloped one). The column's emitter has area s^2 / |n_a| per unit coverage: the frontmost
   // voxel of the column (the one the normal leaves through) injects it, the others nothing.
   int a = dominant_axis(v.normal);
-  ivec3 front = c.xyz;
+  ivec3 front = c;
   front[a] += v.normal[a] > 0.0 ? 1 : -1;
   if (lpv_inside(front) && emits_towards(voxel_texel(front, level), a, v.normal[a])) return v;
-  v.position = voxel_level_min(level) + (vec3(c.xyz) + 0.5 + voxel_plane_offset(n) * v.normal) * s;
+  v.position = voxel_level_min(level) + (vec3(c) + 0.5 + voxel_plane_offset(n) * v.normal) * s;
   v.flux = SH_PI * le * s * s / abs(v.normal[a]);
   v.valid = true;
   return v;

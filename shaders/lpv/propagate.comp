@@ -49,12 +49,11 @@ layout(push_constant) uniform Push {
   float factor;     // propagation factor (1: physical)
   uint shell_start; // first step levels above 0 accumulate
   uint octree_levels;
-  uint pad;
+  int cell_total;    // cells of every octree level (one state's size)
   uvec4 iterations[2];  // per octree level: its number of steps
 } pc;
 
-int cell_total() { return lpv_level_base(int(pc.octree_levels)); }
-int state_index(uint state, int cell, int ch) { return (int(state) * cell_total() + cell) * 3 + ch; }
+int state_index(uint state, int cell, int ch) { return (int(state) * pc.cell_total + cell) * 3 + ch; }
 uint level_iterations(int o) { return pc.iterations[o >> 2][o & 3]; }
 bool accumulates(int o, uint step) { return o == 0 || step >= pc.shell_start; }
 
@@ -129,12 +128,15 @@ void main() {
   }
   if (pc.step == iterations) return;
 
+  // The neighbours are on the cell's own level.
+  int level_base = lpv_level_base(o);
+  int n = lpv_level_resolution(o);
   vec4 gathered[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
   for (int a = 0; a < 6; ++a) {
     ivec3 d = AXES[a];
     ivec3 source = c - d;
     if (!lpv_octree_inside(source, o)) continue;
-    int source_cell = lpv_octree_cell(source, where.cascade, o);
+    int source_cell = lpv_octree_cell_at(level_base, n, source, where.cascade);
     vec4 sh[3];
     for (int ch = 0; ch < 3; ++ch) sh[ch] = work[state_index(pc.src, source_cell, ch)];
     if (all(equal(sh[0], vec4(0.0))) && all(equal(sh[1], vec4(0.0))) &&

@@ -123,7 +123,7 @@ void main() {
     return;
   }
   vec3 p = voxel_relative(g.position);
-  int finest = voxel_finest_level(p, 1.0);
+  int finest = voxel_finest_level(p, 0.0);
   if (finest < 0) {  // outside the voxel volume: nothing is known there
     store(pixel, vec3(0.0), 1.0);
     store_shadow(pixel, 1.0);

@@ -32,9 +32,13 @@ bool overlaps(ivec3 voxel) {
     return false;
   }
   vec3 q = p - tri_v0;
-  // Plane: the box's lowest and highest corners along the normal straddle it.
+  // Plane: the box's lowest and highest corners along the normal straddle it. A plane lying on
+  // a face between two voxels belongs to the one in front of it (on its normal's side), as a
+  // plane just in front of the face would: the box whose highest corner only touches the plane
+  // lies behind the surface. (Both, as any touch counts elsewhere, made walls on voxel faces two
+  // voxels thick, with the receiver's own surface half a voxel above it.)
   float s = dot(tri_plane.xyz, q);
-  if (s + tri_plane_d.x > VOXEL_OVERLAP_EPSILON || s + tri_plane_d.y < -VOXEL_OVERLAP_EPSILON) {
+  if (s + tri_plane_d.x > VOXEL_OVERLAP_EPSILON || s + tri_plane_d.y <= VOXEL_OVERLAP_EPSILON) {
     return false;
   }
   // Edges in the three projections (xy, yz, zx).

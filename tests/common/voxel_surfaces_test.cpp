@@ -116,6 +116,46 @@ TEST_F(VoxelSurfacesTest, FacingAwayAndCoplanarSurfacesAreNotHidden) {
   EXPECT_GT(wall.emission.z, 1.0f) << "the face towards +x was hidden";
 }
 
+// A plane lying exactly on the face between two voxel layers fills the layer in front of it
+// (where its normal points) and not the one behind, as a plane a hair in front of the face
+// would: a floor at y = 2 facing up fills y in [2, 3), a ceiling at y = 6 facing down fills
+// y in [5, 6), a wall at x = 2 facing +x fills x in [2, 3). Walls at the world's origin lie on a
+// face at every voxel size (the grid is anchored on it), so this decides how thick most floors
+// are.
+TEST_F(VoxelSurfacesTest, PlaneOnAVoxelFaceFillsTheLayerInFrontOfIt) {
+  scene::SceneBuilder b("faces");
+  const int white = b.add_material(emitter({0.8f, 0.8f, 0.8f}, glm::vec3(0.0f)));
+  b.add_quad("floor", {2, 2, 2}, {0, 0, 4}, {4, 0, 0}, white);
+  b.add_quad("ceiling", {2, 6, 2}, {4, 0, 0}, {0, 0, 4}, white);
+  b.add_quad("wall", {2, 2, 2}, {0, 4, 0}, {0, 0, 4}, white);
+  const scene::Scene scene = b.finish();
+  // The hardware and geometry-shader coverage run the same overlap test in the fragment shader.
+  for (const char* mode : {"auto", "geometry_shader"}) {
+    std::map<std::string, std::string> params = kOneMetreVoxels;
+    params["voxelize.conservative"] = mode;
+    VoxelRun run(scene, params);
+    run.render(glm::vec3(4.0f));
+    const VoxelVolumes v = run.read();
+    auto occupied = [&](glm::dvec3 world) {
+      return v.occupied(0, glm::ivec3(glm::floor(v.window_coord(0, world))));
+    };
+    for (double z : {2.5, 3.5, 5.5}) {
+      for (double x : {3.5, 4.5}) {
+        EXPECT_TRUE(occupied({x, 2.5, z})) << mode << ": floor's layer in front, x " << x;
+        EXPECT_FALSE(occupied({x, 1.5, z})) << mode << ": floor's layer behind, x " << x;
+        EXPECT_TRUE(occupied({x, 5.5, z})) << mode << ": ceiling's layer in front, x " << x;
+        EXPECT_FALSE(occupied({x, 6.5, z})) << mode << ": ceiling's layer behind, x " << x;
+      }
+      EXPECT_TRUE(occupied({2.5, 3.5, z})) << mode << ": wall's layer in front";
+      EXPECT_FALSE(occupied({1.5, 3.5, z})) << mode << ": wall's layer behind";
+    }
+    // The plane lies on the front voxel's face, half a voxel below its centre (the normal
+    // volume's w holds 1 + d / 4 for a plane d voxels from the centre along the normal).
+    const glm::ivec3 floor_voxel = glm::ivec3(glm::floor(v.window_coord(0, {4.5, 2.5, 3.5})));
+    EXPECT_NEAR((v.normal[v.texel(0, floor_voxel)].w - 1.0f) / 0.25f, -0.5f, 0.01f) << mode;
+  }
+}
+
 // A voxel an emitter covers in part emits that part of the emitter's light; its albedo,
 // opacity, normal and plane are those of the surface.
 TEST_F(VoxelSurfacesTest, EdgeVoxelsSendOutTheCoveredPart) {

@@ -50,10 +50,8 @@ class ConeTraceClipmapTest : public GpuTest {};
 // (the weights sum to pi). What is left is the transparency a cone keeps when it reaches the
 // edge of the volume (2 m) through coarse mips that mix the emitter with the empty ball
 // around the point. Tolerance: 5% for N >= 4 (the request of the issue), 10% below, where 1-3
-// cones are wide (up to 60 degrees half angle); measured <= 0.6% for all N in both modes. (The
-// isotropic mode lost up to 11% while cones stopped a voxel short of the window's edge: its
-// box-filtered mips of the emitter's boundary are only partly opaque, and oblique cones left
-// before saturating.)
+// cones are wide (up to 60 degrees half angle); measured <= 0.6% for all N in both modes (the
+// isotropic mode's 11% of an earlier filter is long gone, docs/error-budget.md).
 TEST_P(ConeTraceEnergyTest, UniformEmissiveShellGivesPiL) {
   const bool anisotropic = GetParam();
   VolumeData data;

@@ -87,8 +87,7 @@ vec4 vct_fetch(sampler3D volume, vec3 p, int level, int mip) {
   // a small fraction, so that scenes far from the origin keep precision.
   ivec3 origin_mip = origin >> mip;  // arithmetic shift: floor division for negatives too
   vec3 remainder = vec3(origin - (origin_mip << mip));
-  vec3 window = voxel_window_coord(p, level);
-  vec3 fraction = (window + remainder) / float(1 << mip);
+  vec3 fraction = (voxel_window_coord(p, level) + remainder) / float(1 << mip);
   ivec3 base = origin_mip & (r - 1);  // floor modulo: r is a power of two
   vec3 texel = vec3(base) + fraction;
   float z = texel.z - 0.5;

@@ -33,6 +33,7 @@ struct TracePush {
   float start_offset;
   float shadow_tan_half_angle;
   int32_t lanes;
+  int32_t interleave;
 };
 
 struct UpsamplePush {
@@ -174,7 +175,8 @@ class ConeTracePass final : public graph::Pass {
                        static_cast<float>(ctx.number("normal_offset")),
                        static_cast<float>(ctx.number("start_offset")),
                        static_cast<float>(std::tan(shadow_angle)),
-                       ctx.integer("lanes")};
+                       ctx.integer("lanes"),
+                       specular_ ? 1 : ctx.integer("interleave")};
     };
 
     const graph::BoundResource& traced = half_ ? ctx.resource("half_res") : result;
@@ -296,6 +298,16 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
                       {},
                       "diffuse cones over the hemisphere (equal cosine-weighted cells; weights "
                       "sum to pi)",
+                      true});
+    params.push_back({"interleave",
+                      graph::ParamType::Int,
+                      4.0,
+                      1.0,
+                      4.0,
+                      {},
+                      "n: the cone set turns about the normal in an n x n pixel pattern and each "
+                      "pixel averages the n x n window over its own surface, n^2 turns at the "
+                      "cost of one (1: the same cones at every pixel; docs/vct.md)",
                       true});
     params.push_back({"shadow_cone_angle",
                       graph::ParamType::Float,

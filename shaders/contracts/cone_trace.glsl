@@ -35,7 +35,7 @@
 // API
 //   vct_sample(p, dir, lod)            filtered volume value (stored form) at a point
 //   vct_trace_cone(cone, settings)     front-to-back accumulation along one cone
-//   vct_diffuse_cone(i, n, ...)        the i-th of n diffuse cones (tangent space) + weight
+//   vct_diffuse_cone(i, n, rot, ...)   the i-th of n diffuse cones (tangent space) + weight
 //   vct_diffuse_irradiance(...)        irradiance E over the hemisphere of a normal, and AO
 //   vct_specular_tan_half_angle(r)     cone aperture for a GGX perceptual roughness
 // Positions are anchor-relative (voxel_relative(world)); distances in metres.
@@ -404,8 +404,11 @@ void vct_tangent_frame(vec3 n, out vec3 t, out vec3 b) {
 // cosine-weighted centroids of one ring of sectors all sat at one polar angle, about 48
 // degrees, so adding cones never refined theta, and cones that lie low over their receiver
 // are narrowed to near-rays; see vct_trace_cone.) Each cone's aperture is the solid angle
-// of its share of the disk, pi/count / cos theta.
-void vct_diffuse_cone(int index, int count, out vec3 direction, out float weight,
+// of its share of the disk, pi/count / cos theta. `rotation` (radians) turns the whole set
+// about the normal: a few cones in one fixed frame see a scene from a few arbitrary
+// azimuths, and the same ones on every point of a plane, so callers vary it between
+// neighbouring points and let their gathers average (docs/vct.md, "Interleaved cone sets").
+void vct_diffuse_cone(int index, int count, float rotation, out vec3 direction, out float weight,
                       out float tan_half_angle) {
   count = clamp(count, 1, VCT_MAX_DIFFUSE_CONES);
   index = clamp(index, 0, count - 1);
@@ -414,7 +417,7 @@ void vct_diffuse_cone(int index, int count, out vec3 direction, out float weight
   float sin2 = count == 1 ? 0.0 : (float(index) + 0.5) / float(count);
   float sin_theta = sqrt(sin2);
   float cos_theta = sqrt(1.0 - sin2);
-  float phi = float(index) * golden_angle;
+  float phi = float(index) * golden_angle + rotation;
   direction = vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
   float solid_angle = min(weight / cos_theta, 2.0 * VCT_PI);
   // A cone of half angle h has solid angle 2 pi (1 - cos h).
@@ -424,11 +427,11 @@ void vct_diffuse_cone(int index, int count, out vec3 direction, out float weight
 }
 
 // Irradiance E (W/m^2) at anchor-relative p, a point of a surface with unit normal n, from
-// `count` diffuse cones, and the ambient-occlusion visibility (1 = open) in `visibility`. The
-// cones start `normal_offset` (metres) off the surface. Outgoing diffuse radiance is
-// c_diff / pi * E.
-vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float normal_offset, VctTraceSettings s,
-                            out float visibility) {
+// `count` diffuse cones turned by `rotation` about n (vct_diffuse_cone), and the
+// ambient-occlusion visibility (1 = open) in `visibility`. The cones start `normal_offset`
+// (metres) off the surface. Outgoing diffuse radiance is c_diff / pi * E.
+vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float rotation, float normal_offset,
+                            VctTraceSettings s, out float visibility) {
   vec3 t, b;
   vct_tangent_frame(n, t, b);
   vec3 origin = p + n * normal_offset;
@@ -438,7 +441,7 @@ vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float normal_offset, VctT
   for (int i = 0; i < count; ++i) {
     vec3 d;
     float weight, tan_half;
-    vct_diffuse_cone(i, count, d, weight, tan_half);
+    vct_diffuse_cone(i, count, rotation, d, weight, tan_half);
     VctCone cone = vct_cone_from_surface(origin, normalize(t * d.x + b * d.y + n * d.z), tan_half,
                                          n, normal_offset);
     VctConeResult r = vct_trace_cone(cone, s);

@@ -66,6 +66,7 @@ layout(push_constant) uniform Push {
   float start_offset;   // in voxels
   float shadow_tan_half_angle;
   int lanes;  // of a capped cone (contracts/cone_trace.glsl)
+  int interleave;  // n of the n x n interleaved cone sets (diffuse; 1: one set everywhere)
 } pc;
 
 void store(ivec2 pixel, vec3 result, float visibility) {
@@ -108,26 +109,81 @@ void store_shadow(ivec2 pixel, float visibility) {
 #endif
 }
 
-void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(uvec2(pixel), pc.size))) return;
+#if !SPECULAR && !SHADOW_ONLY
+#define INTERLEAVED 1
+#else
+#define INTERLEAVED 0
+#endif
+
+#if INTERLEAVED
+// Interleaved cone sets (docs/vct.md): a few cones in one fixed frame see every point of a
+// plane from the same few azimuths, so what they miss is missed everywhere alike (the means of
+// the Cornell boxes swung by 25 points with the frame's orientation at 6 cones). Pixel (x, y)
+// turns its set by 2 pi i / n^2 about its normal, i = (x mod n) n + (y mod n), so that every
+// n x n window holds each turn once, and each pixel's result is the average of such a window
+// over the pixels of its own surface: n^2 turns of the set at the cost of one.
+shared vec4 interleave_value[64];     // rgb result, a = AO visibility
+shared vec4 interleave_position[64];  // world position, w = 1 where a gather ran
+shared vec3 interleave_normal[64];
+
+float interleave_rotation(ivec2 pixel) {
+  int n = max(pc.interleave, 1);
+  int index = (pixel.x % n) * n + (pixel.y % n);
+  return 2.0 * VCT_PI * float(index) / float(n * n);
+}
+
+// The surface-weighted average over the n x n window around this invocation, moved inside the
+// workgroup (and the image) so that it always holds n^2 pixels. Neighbours count fully on the
+// pixel's own plane and fade with their distance from it (relative to how far apart the two
+// pixels are) and with the angle between the normals, so light does not cross edges.
+vec4 interleave_resolve(vec4 own) {
+  int n = max(pc.interleave, 1);
+  ivec2 local = ivec2(gl_LocalInvocationID.xy);
+  ivec2 available = min(ivec2(8), ivec2(pc.size) - ivec2(gl_WorkGroupID.xy) * 8);
+  ivec2 start = clamp(local - n / 2, ivec2(0), max(available - n, ivec2(0)));
+  ivec2 stop = min(start + n, available);
+  int self = local.y * 8 + local.x;
+  vec3 position = interleave_position[self].xyz;
+  vec3 normal = interleave_normal[self];
+  vec4 sum = own;
+  float weight_sum = 1.0;
+  for (int y = start.y; y < stop.y; ++y) {
+    for (int x = start.x; x < stop.x; ++x) {
+      int other = y * 8 + x;
+      if (other == self || interleave_position[other].w == 0.0) continue;
+      vec3 offset = interleave_position[other].xyz - position;
+      float off_plane = abs(dot(normal, offset)) / (0.1 * length(offset) + 1e-6);
+      float facing = max(dot(normal, interleave_normal[other]), 0.0);
+      facing *= facing;
+      facing *= facing;
+      float w = facing * facing / (1.0 + off_plane * off_plane);
+      sum += w * interleave_value[other];
+      weight_sum += w;
+    }
+  }
+  return sum / weight_sum;
+}
+#endif
+
+// This invocation's gather: rgb result and AO visibility in a; false where nothing was traced
+// (no surface, or outside the voxel volume). Writes the shadow output itself.
+bool gather(ivec2 pixel, out GbufferSample g, out vec4 value) {
+  value = vec4(0.0, 0.0, 0.0, 1.0);
 #if HALF
   ivec2 source = gbuffer_block_representative(pixel);
 #else
   ivec2 source = pixel;
 #endif
-  GbufferSample g = gbuffer_sample(source);
+  g = gbuffer_sample(source);
   if (!g.valid) {
-    store(pixel, vec3(0.0), 1.0);
     store_shadow(pixel, 1.0);
-    return;
+    return false;
   }
   vec3 p = voxel_relative(g.position);
   int finest = voxel_finest_level(p, 0.0);
   if (finest < 0) {  // outside the voxel volume: nothing is known there
-    store(pixel, vec3(0.0), 1.0);
     store_shadow(pixel, 1.0);
-    return;
+    return false;
   }
   float voxel = voxel_size(finest);
   VctTraceSettings s;
@@ -140,9 +196,8 @@ void main() {
   store_shadow(pixel, light_visibility(g.position, p, g.normal, voxel, s));
 #endif
 #if SHADOW_ONLY
-  return;
-#endif
-#if SPECULAR
+  return false;
+#elif SPECULAR
   vec3 v = safe_normalize(frame.camera_position.xyz - g.position, g.normal);
   vec3 r = reflect(-v, g.normal);
   // Shading normals can reflect below the surface: lift the cone back over the horizon.
@@ -155,12 +210,33 @@ void main() {
   float n_dot_v = clamp(dot(g.normal, v), 0.0, 1.0);
   float m = 1.0 - n_dot_v;
   vec3 fresnel = f0 + (vec3(1.0) - f0) * (m * m * m * m * m);
-  store(pixel, fresnel * traced.radiance, 1.0);
+  value = vec4(fresnel * traced.radiance, 1.0);
+  return true;
 #else
   float visibility;
-  vec3 irradiance =
-      vct_diffuse_irradiance(p, g.normal, pc.diffuse_cones, pc.normal_offset * voxel, s, visibility);
+  vec3 irradiance = vct_diffuse_irradiance(p, g.normal, pc.diffuse_cones, interleave_rotation(pixel),
+                                           pc.normal_offset * voxel, s, visibility);
   vec3 c_diff = g.base_color * (1.0 - g.metallic);
-  store(pixel, c_diff / VCT_PI * irradiance, visibility);
+  value = vec4(c_diff / VCT_PI * irradiance, visibility);
+  return true;
 #endif
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  bool inside = all(lessThan(uvec2(pixel), pc.size));
+  GbufferSample g;
+  g.valid = false;
+  vec4 value = vec4(0.0, 0.0, 0.0, 1.0);
+  bool traced = inside && gather(pixel, g, value);
+#if INTERLEAVED
+  // Every invocation of the workgroup reaches the barrier, inside the image or not.
+  int self = int(gl_LocalInvocationID.y) * 8 + int(gl_LocalInvocationID.x);
+  interleave_value[self] = value;
+  interleave_position[self] = vec4(traced ? g.position : vec3(0.0), traced ? 1.0 : 0.0);
+  interleave_normal[self] = traced ? g.normal : vec3(0.0);
+  barrier();
+  if (traced && pc.interleave > 1) value = interleave_resolve(value);
+#endif
+  if (inside) store(pixel, value.rgb, value.a);
 }

@@ -79,21 +79,31 @@ INSTANTIATE_TEST_SUITE_P(
 // from different azimuths, and a few cones miss the emitter differently (docs/vct.md,
 // "Interleaved cone sets"); the interleaved gather averages turns that a quarter turn maps onto
 // themselves, so the two means must agree.
+struct FloorUnderAnEmitter {
+  static constexpr float kFloorAlbedo = 0.8f;
+  static constexpr float kRadiance = 10.0f;
+  static constexpr float kSide = 0.2f;
+  static constexpr float kHeight = 0.25f;
+  static constexpr float kCameraHeight = 1.2f;
+  static constexpr float kViewHalfWidth = 0.45f;  // on the floor
+};
+
 scene::Scene floor_under_an_emitter(bool turned) {
   scene::SceneBuilder b(turned ? "floor_under_an_emitter_turned" : "floor_under_an_emitter");
-  const int floor = b.add_material(matte(glm::vec3(0.8f)));
-  const int lamp = b.add_material(matte(glm::vec3(0.0f), glm::vec3(10.0f)));
+  using S = FloorUnderAnEmitter;
+  const int floor = b.add_material(matte(glm::vec3(S::kFloorAlbedo)));
+  const int lamp = b.add_material(matte(glm::vec3(0.0f), glm::vec3(S::kRadiance)));
   b.add_quad("floor", {-0.5f, 0.0f, -0.5f}, {0.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 0.0f}, floor);
   // (x, z) -> (z, -x) is the quarter turn about +y.
   const glm::vec2 centre = turned ? glm::vec2(0.0f, -0.25f) : glm::vec2(0.25f, 0.0f);
-  const float side = 0.2f;
-  const float height = 0.25f;
+  const float side = S::kSide;
+  const float height = S::kHeight;
   // Facing -y, towards the floor.
   b.add_quad("emitter", {centre.x - 0.5f * side, height, centre.y - 0.5f * side},
              {side, 0.0f, 0.0f}, {0.0f, 0.0f, side}, lamp);
-  const float distance = 1.2f;
+  const float distance = S::kCameraHeight;
   b.add_camera("above", {0.0f, distance, 0.0f}, {0.0f, 0.0f, 0.0f},
-               2.0f * std::atan(0.45f / distance), {0.0f, 0.0f, 1.0f});
+               2.0f * std::atan(S::kViewHalfWidth / distance), {0.0f, 0.0f, 1.0f});
   return b.finish();
 }
 
@@ -121,6 +131,50 @@ TEST_F(GpuTest, InterleavedConeSetsDoNotDependOnTheFramesAzimuth) {
         "(plain %.5f, %.5f)\n",
         c == 0 ? 4 : 6, one_frame, interleaved, mean[0][0][c], mean[0][1][c]);
     EXPECT_NEAR(interleaved, 1.0, 0.02) << (c == 0 ? 4 : 6) << " cones";
+  }
+}
+
+// The floor's one-bounce light from the emitter (the plain scene) in closed form: at each pixel
+// centre's floor point, rho L F with F the point-to-square form factor (the emitter is
+// one-sided and seen from its back, so every pixel sees the floor). The mean over pixel centres
+// is the same whichever way the image axes point.
+double floor_under_an_emitter_mean_indirect(uint32_t size) {
+  using S = FloorUnderAnEmitter;
+  const double x0 = 0.25 - 0.5 * S::kSide;
+  const double x1 = 0.25 + 0.5 * S::kSide;
+  const double half = 0.5 * S::kSide;
+  const glm::dvec3 square[4] = {{x0, S::kHeight, -half},
+                                {x1, S::kHeight, -half},
+                                {x1, S::kHeight, half},
+                                {x0, S::kHeight, half}};
+  double sum = 0.0;
+  for (uint32_t i = 0; i < size; ++i) {
+    for (uint32_t j = 0; j < size; ++j) {
+      const double u = ((i + 0.5) / size * 2.0 - 1.0) * S::kViewHalfWidth;
+      const double v = ((j + 0.5) / size * 2.0 - 1.0) * S::kViewHalfWidth;
+      sum += S::kFloorAlbedo * S::kRadiance *
+             polygon_form_factor(glm::dvec3(u, 0.0, v), glm::dvec3(0.0, 1.0, 0.0), square);
+    }
+  }
+  return sum / (static_cast<double>(size) * size);
+}
+
+// End to end through the voxelization of an emitter, its injection as emission, the filter and
+// the gather: the near field of a small emitter. Measured with the default 6 cones: 1.6x the
+// closed form at 32^3 and 1.4x at 64^3 (1.3x at 128^3), nearly the same from 4 to 32 cones, where
+// an emitter as wide as the floor's view (0.8 m at the same height) is 1.09x. Held to that for
+// now, from both sides, so that the excess cannot grow unseen; the target is 10%
+// (docs/error-budget.md, fourth round).
+TEST_F(GpuTest, FloorUnderAnEmittingSquare) {
+  const double expected = floor_under_an_emitter_mean_indirect(kEnergyBoundImageSize);
+  for (uint32_t resolution : {32u, 64u}) {
+    const double rendered = render_mean_indirect(
+        vct_gi_setup(resolution), floor_under_an_emitter(false), kEnergyBoundImageSize);
+    const double ratio = rendered / expected;
+    std::printf("[emitting square] vct %u^3: %.5f against the closed form %.5f, ratio %.4f\n",
+                resolution, rendered, expected, ratio);
+    EXPECT_GT(ratio, 0.9) << resolution;
+    EXPECT_LT(ratio, 1.75) << resolution;
   }
 }
 

@@ -43,7 +43,9 @@
 #define SHADOW_FORMAT r16f
 #endif
 
-layout(local_size_x = 8, local_size_y = 8) in;
+// Workgroup edge (passes/vct/vct_pipeline.hpp kTile): the interleaved average works inside one.
+#define TILE 8
+layout(local_size_x = TILE, local_size_y = TILE) in;
 
 #if !SHADOW_ONLY
 layout(set = 0, binding = 7, rgba16f) writeonly uniform image2D out_result;
@@ -122,9 +124,9 @@ void store_shadow(ivec2 pixel, float visibility) {
 // turns its set by 2 pi i / n^2 about its normal, i = (x mod n) n + (y mod n), so that every
 // n x n window holds each turn once, and each pixel's result is the average of such a window
 // over the pixels of its own surface: n^2 turns of the set at the cost of one.
-shared vec4 interleave_value[64];     // rgb result, a = AO visibility
-shared vec4 interleave_position[64];  // world position, w = 1 where a gather ran
-shared vec3 interleave_normal[64];
+shared vec4 interleave_value[TILE * TILE];     // rgb result, a = AO visibility
+shared vec4 interleave_position[TILE * TILE];  // world position, w = 1 where a gather ran
+shared vec3 interleave_normal[TILE * TILE];
 
 float interleave_rotation(ivec2 pixel) {
   int n = max(pc.interleave, 1);
@@ -139,17 +141,17 @@ float interleave_rotation(ivec2 pixel) {
 vec4 interleave_resolve(vec4 own) {
   int n = max(pc.interleave, 1);
   ivec2 local = ivec2(gl_LocalInvocationID.xy);
-  ivec2 available = min(ivec2(8), ivec2(pc.size) - ivec2(gl_WorkGroupID.xy) * 8);
+  ivec2 available = min(ivec2(TILE), ivec2(pc.size) - ivec2(gl_WorkGroupID.xy) * TILE);
   ivec2 start = clamp(local - n / 2, ivec2(0), max(available - n, ivec2(0)));
   ivec2 stop = min(start + n, available);
-  int self = local.y * 8 + local.x;
+  int self = local.y * TILE + local.x;
   vec3 position = interleave_position[self].xyz;
   vec3 normal = interleave_normal[self];
   vec4 sum = own;
   float weight_sum = 1.0;
   for (int y = start.y; y < stop.y; ++y) {
     for (int x = start.x; x < stop.x; ++x) {
-      int other = y * 8 + x;
+      int other = y * TILE + x;
       if (other == self || interleave_position[other].w == 0.0) continue;
       vec3 offset = interleave_position[other].xyz - position;
       float off_plane = abs(dot(normal, offset)) / (0.1 * length(offset) + 1e-6);
@@ -231,7 +233,7 @@ void main() {
   bool traced = inside && gather(pixel, g, value);
 #if INTERLEAVED
   // Every invocation of the workgroup reaches the barrier, inside the image or not.
-  int self = int(gl_LocalInvocationID.y) * 8 + int(gl_LocalInvocationID.x);
+  int self = int(gl_LocalInvocationID.y) * TILE + int(gl_LocalInvocationID.x);
   interleave_value[self] = value;
   interleave_position[self] = vec4(traced ? g.position : vec3(0.0), traced ? 1.0 : 0.0);
   interleave_normal[self] = traced ? g.normal : vec3(0.0);

@@ -114,6 +114,23 @@ double lit_square_one_bounce_irradiance(const LitSquare& setup) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Camera rays
+
+CameraPixelRays::CameraPixelRays(const scene::Camera& camera, uint32_t size)
+    : inverse_view_proj_(glm::inverse(
+          glm::dmat4(scene::projection_matrix(camera, 1.0f) * scene::view_matrix(camera)))),
+      size_(size) {}
+
+PixelRay CameraPixelRays::operator()(uint32_t x, uint32_t y) const {
+  const double nx = (x + 0.5) / size_ * 2.0 - 1.0;
+  const double ny = (y + 0.5) / size_ * 2.0 - 1.0;
+  const glm::dvec4 near_point = inverse_view_proj_ * glm::dvec4(nx, ny, 0.0, 1.0);
+  const glm::dvec4 far_point = inverse_view_proj_ * glm::dvec4(nx, ny, 1.0, 1.0);
+  const glm::dvec3 origin = glm::dvec3(near_point) / near_point.w;
+  return {origin, glm::dvec3(far_point) / far_point.w - origin};
+}
+
+// ---------------------------------------------------------------------------------------------
 // Closed box
 
 glm::dvec3 LitBox::light_position() {
@@ -238,21 +255,13 @@ double BoxRadiosity::indirect_radiance(const glm::dvec3& p, const glm::dvec3& n,
 
 double BoxRadiosity::mean_indirect_radiance(const scene::Camera& camera, uint32_t size,
                                             int indirect_bounces) const {
-  const uint32_t width = size;
-  const uint32_t height = size;
-  const glm::mat4 view_proj = scene::projection_matrix(camera, 1.0f) * scene::view_matrix(camera);
-  const glm::dmat4 inverse = glm::inverse(glm::dmat4(view_proj));
+  const CameraPixelRays rays(camera, size);
   const glm::dvec3 lo = LitBox::interior_min();
   const glm::dvec3 hi = LitBox::interior_max();
   double sum = 0.0;
-  for (uint32_t y = 0; y < height; ++y) {
-    for (uint32_t x = 0; x < width; ++x) {
-      const double nx = (x + 0.5) / width * 2.0 - 1.0;
-      const double ny = (y + 0.5) / height * 2.0 - 1.0;
-      const glm::dvec4 near_point = inverse * glm::dvec4(nx, ny, 0.0, 1.0);
-      const glm::dvec4 far_point = inverse * glm::dvec4(nx, ny, 1.0, 1.0);
-      const glm::dvec3 origin = glm::dvec3(near_point) / near_point.w;
-      const glm::dvec3 dir = glm::dvec3(far_point) / far_point.w - origin;
+  for (uint32_t y = 0; y < size; ++y) {
+    for (uint32_t x = 0; x < size; ++x) {
+      const auto [origin, dir] = rays(x, y);
       // The camera is inside the room: the ray leaves it through the wall it sees.
       double t = std::numeric_limits<double>::max();
       int axis = 0;
@@ -273,7 +282,7 @@ double BoxRadiosity::mean_indirect_radiance(const scene::Camera& camera, uint32_
       sum += indirect_radiance(p, normal, indirect_bounces);
     }
   }
-  return sum / (static_cast<double>(width) * height);
+  return sum / (static_cast<double>(size) * size);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -42,6 +42,23 @@ double polygon_form_factor(const glm::dvec3& p, const glm::dvec3& n,
                            std::span<const glm::dvec3> polygon);
 
 // ---------------------------------------------------------------------------------------------
+// The ray through each pixel centre of a size x size image of a camera, as the rasterised passes
+// place pixel centres (the inverse view-projection is built once).
+struct PixelRay {
+  glm::dvec3 origin;     // on the near plane
+  glm::dvec3 direction;  // towards the far plane, not normalized
+};
+class CameraPixelRays {
+ public:
+  CameraPixelRays(const scene::Camera& camera, uint32_t size);
+  PixelRay operator()(uint32_t x, uint32_t y) const;
+
+ private:
+  glm::dmat4 inverse_view_proj_;
+  uint32_t size_;
+};
+
+// ---------------------------------------------------------------------------------------------
 // A receiver facing a lit Lambertian square.
 //
 // A square of side 1 m and albedo 0.8 at y = 0 faces +y; a receiver patch of 15 mm (albedo 1)

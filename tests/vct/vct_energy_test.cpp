@@ -136,8 +136,7 @@ TEST_F(GpuTest, InterleavedConeSetsDoNotDependOnTheFramesAzimuth) {
 
 // The floor's one-bounce light from the emitter (the plain scene) in closed form: at each pixel
 // centre's floor point, rho L F with F the point-to-square form factor (the emitter is
-// one-sided and seen from its back, so every pixel sees the floor). The mean over pixel centres
-// is the same whichever way the image axes point.
+// one-sided and seen from its back, so every pixel sees the floor).
 double floor_under_an_emitter_mean_indirect(uint32_t size) {
   using S = FloorUnderAnEmitter;
   const double x0 = 0.25 - 0.5 * S::kSide;
@@ -147,13 +146,14 @@ double floor_under_an_emitter_mean_indirect(uint32_t size) {
                                 {x1, S::kHeight, -half},
                                 {x1, S::kHeight, half},
                                 {x0, S::kHeight, half}};
+  const CameraPixelRays rays(floor_under_an_emitter(false).cameras.front(), size);
   double sum = 0.0;
-  for (uint32_t i = 0; i < size; ++i) {
-    for (uint32_t j = 0; j < size; ++j) {
-      const double u = ((i + 0.5) / size * 2.0 - 1.0) * S::kViewHalfWidth;
-      const double v = ((j + 0.5) / size * 2.0 - 1.0) * S::kViewHalfWidth;
+  for (uint32_t y = 0; y < size; ++y) {
+    for (uint32_t x = 0; x < size; ++x) {
+      const auto [origin, direction] = rays(x, y);
+      const glm::dvec3 floor_point = origin - (origin.y / direction.y) * direction;
       sum += S::kFloorAlbedo * S::kRadiance *
-             polygon_form_factor(glm::dvec3(u, 0.0, v), glm::dvec3(0.0, 1.0, 0.0), square);
+             polygon_form_factor(floor_point, glm::dvec3(0.0, 1.0, 0.0), square);
     }
   }
   return sum / (static_cast<double>(size) * size);

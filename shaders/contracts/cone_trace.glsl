@@ -35,7 +35,7 @@
 // API
 //   vct_sample(p, dir, lod)            filtered volume value (stored form) at a point
 //   vct_trace_cone(cone, settings)     front-to-back accumulation along one cone
-//   vct_diffuse_cone(i, n, rot, ...)   the i-th of n diffuse cones (tangent space) + weight
+//   vct_diffuse_cone(i, n, rot, ring, ...)  the i-th of n diffuse cones (tangent space) + weight
 //   vct_diffuse_irradiance(...)        irradiance E over the hemisphere of a normal, and AO
 //   vct_specular_tan_half_angle(r)     cone aperture for a GGX perceptual roughness
 // Positions are anchor-relative (voxel_relative(world)); distances in metres.
@@ -260,20 +260,20 @@ struct VctConeStep {
   float step_length;  // the segment [t, t + step_length] the sample stands for
 };
 
-// False once the cone has left the volume.
+// False once the cone's axis has left the volume. The step is filled in either way: the lanes
+// beside the axis may still be inside (vct_trace_cone).
 bool vct_cone_step(VctCone cone, VctConeFrame f, VctTraceSettings s, float t,
                    out VctConeStep st) {
   float base_size = f.base_size;
   bool has_receiver = f.has_receiver;
   st.p = cone.origin + t * cone.direction;
   int finest = voxel_finest_level(st.p, VCT_WINDOW_MARGIN);
-  if (finest < 0) return false;
   st.diameter = max(2.0 * t * f.tan_half, base_size);
   float lod = log2(st.diameter / base_size);
   float height = cone.receiver_height + t * f.rise;
   if (has_receiver) lod = min(lod, log2(max(height, 1e-6 * base_size) / (3.0 * base_size)));
-  lod = min(lod, vct_window_lod_limit(st.p));
-  st.lod = clamp(lod, float(finest), vct_max_lod());
+  if (finest >= 0) lod = min(lod, vct_window_lod_limit(st.p));
+  st.lod = clamp(lod, float(max(finest, 0)), vct_max_lod());
   st.voxel = base_size * exp2(st.lod);
   // Each sample stands for the segment [t, t + step]; the last one ends at max_distance.
   st.step_length = min(max(s.step_factor * st.voxel, 1e-2 * base_size), s.max_distance - t);
@@ -284,7 +284,7 @@ bool vct_cone_step(VctCone cone, VctConeFrame f, VctTraceSettings s, float t,
     // so the cone still stops at them (skipping such samples let cones escape through them).
     st.p += cone.receiver_normal * (1.5 * coarse_voxel - height);
   }
-  return true;
+  return finest >= 0;
 }
 
 // Front-to-back compositing of one sample (stored form) over a step of `ratio` voxel lengths.
@@ -323,14 +323,39 @@ VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
   return result;
 }
 
+// The lanes' directions: lane j of `lanes` is the axis turned about the receiver's normal by
+// (2 (j + 1/2) / lanes - 1) times the cone's azimuthal half-width at the axis's elevation, so
+// every lane keeps the axis's angle to the receiver. (Lanes offset along a straight tangent,
+// axis + k side, leaned towards the horizon by up to atan(0.75 tan(half angle)): the wider the
+// cone, the more of its weight moved to low directions, which made the Cornell boxes 5 to 15
+// points darker; docs/error-budget.md, fifth round.)
+void vct_lane_directions(VctCone cone, VctConeFrame frame, int lanes,
+                         out vec3 directions[VCT_MAX_LANES]) {
+  float rise = frame.rise;
+  vec3 along = cone.direction - cone.receiver_normal * rise;  // horizontal part
+  float horizontal = length(along);
+  vec3 side = cross(cone.direction, cone.receiver_normal);
+  float side_len = length(side);
+  side = side_len > 1e-6 ? side / side_len : vec3(0.0);
+  // Directions at elevation angle theta inside a cone of half angle h around the axis span the
+  // azimuths |phi| <= phi_max, cos h = cos^2 theta + sin^2 theta cos phi_max.
+  float cos_half = inversesqrt(1.0 + frame.tan_half * frame.tan_half);
+  float cos_phi_max = clamp((cos_half - rise * rise) / max(horizontal * horizontal, 1e-6), -1.0, 1.0);
+  float phi_max = acos(cos_phi_max);
+  for (int j = 0; j < VCT_MAX_LANES; ++j) {
+    float phi = (2.0 * (float(j) + 0.5) / float(lanes) - 1.0) * phi_max;
+    directions[j] = along * cos(phi) + side * (horizontal * sin(phi)) + cone.receiver_normal * rise;
+  }
+}
+
 VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
   int lanes = clamp(s.lanes, 1, VCT_MAX_LANES);
-  if (lanes == 1) return vct_trace_cone_axis(cone, s);
   VctConeFrame frame = vct_cone_frame(cone);
+  bool can_spread = frame.has_receiver && abs(frame.rise) < 1.0 - 1e-5;
+  if (lanes == 1 || !can_spread) return vct_trace_cone_axis(cone, s);
   float base_size = frame.base_size;
-  vec3 side = frame.has_receiver ? cross(cone.direction, cone.receiver_normal) : vec3(0.0);
-  float side_len = length(side);
-  side = side_len > 1e-3 ? side / side_len : vec3(0.0);
+  vec3 lane_direction[VCT_MAX_LANES];
+  vct_lane_directions(cone, frame, lanes, lane_direction);
   // The cone's lanes (see below): radiance, opacity and occlusion of each.
   vec3 lane_radiance[VCT_MAX_LANES];
   float lane_opacity[VCT_MAX_LANES];
@@ -346,29 +371,34 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     for (int j = 0; j < lanes; ++j) open = max(open, 1.0 - lane_opacity[j]);
     if (open <= 1.0 - VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
     VctConeStep st;
-    if (!vct_cone_step(cone, frame, s, t, st)) break;  // left the volume
+    bool axis_inside = vct_cone_step(cone, frame, s, t, st);
     // A capped cone's voxels are narrower than the cone: one sample on its axis would be a
     // thin probe carrying the whole cone's weight, which hits or misses a small bright
-    // surface (an area light) and paints it as blotches that move with the cone layout (more
-    // cones were then worse than fewer). So the cone is a fan of `lanes` thin lanes spread
-    // evenly across its width along the receiver's tangent (where the receiver is not), each
-    // composited on its own, so that a lane stops at the wall it meets and the lanes beside it
-    // go on. Where the voxels are as wide as the cone the lanes coincide and share a sample; a
-    // lane outside the volume takes the axis's sample.
-    bool spread = side_len > 1e-3 && st.diameter > 1.5 * st.voxel;
+    // surface (an area light) and paints it as blotches that move with the cone layout. So
+    // the cone is a fan of `lanes` thin lanes spread across its width at the axis's elevation
+    // (vct_lane_directions), each composited on its own, so that a lane stops at the wall it
+    // meets and the lanes beside it go on. Where the voxels are as wide as the cone the lanes
+    // coincide and share the axis's sample. Each lane ends where it leaves the volume, not
+    // where the axis does (lanes that met their wall after the axis had left were cut short).
+    bool spread = st.diameter > 1.5 * st.voxel;
+    if (!spread && !axis_inside) break;
     float ratio = st.step_length / st.voxel;
     float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * st.diameter / base_size);
     vec4 shared_sample = spread ? vec4(0.0) : vct_sample(st.p, cone.direction, st.lod);
+    bool any_inside = !spread;
     for (int j = 0; j < lanes; ++j) {
       if (lane_opacity[j] >= VCT_OPACITY_THRESHOLD) continue;
       vec4 v = shared_sample;
       if (spread) {
-        vec3 q = st.p + side * (((float(j) + 0.5) / float(lanes) - 0.5) * st.diameter);
-        if (voxel_finest_level(q, VCT_WINDOW_MARGIN) < 0) q = st.p;
-        v = vct_sample(q, cone.direction, st.lod);
+        // Same height as the axis's sample (lift included): the lanes share its level of detail.
+        vec3 q = st.p + t * (lane_direction[j] - cone.direction);
+        if (voxel_finest_level(q, VCT_WINDOW_MARGIN) < 0) continue;
+        any_inside = true;
+        v = vct_sample(q, lane_direction[j], st.lod);
       }
       vct_composite(v, ratio, falloff, lane_radiance[j], lane_opacity[j], lane_occlusion[j]);
     }
+    if (!any_inside) break;
     t += st.step_length;
   }
   VctConeResult result;
@@ -399,22 +429,25 @@ void vct_tangent_frame(vec3 n, out vec3 t, out vec3 b) {
 // sin theta, dA = cos theta d omega), so `count` points spread evenly over that disk are a
 // quadrature of the irradiance integral with equal weights pi/count; they sum to exactly pi,
 // and a uniform environment of radiance L gives irradiance pi*L for every count. The points
-// are a golden-angle (Vogel) spiral: point i at radius^2 (i + 1/2)/count, so every count
-// covers both the polar angle and the azimuth evenly, down to near the horizon. (Cones at the
+// are a golden-angle (Vogel) spiral: point i in the ring radius^2 in [i, i + 1)/count, at
+// radius^2 (i + ring_position)/count, so every count covers both the polar angle and the
+// azimuth evenly, down to near the horizon. (Cones at the
 // cosine-weighted centroids of one ring of sectors all sat at one polar angle, about 48
 // degrees, so adding cones never refined theta, and cones that lie low over their receiver
 // are narrowed to near-rays; see vct_trace_cone.) Each cone's aperture is the solid angle
 // of its share of the disk, pi/count / cos theta. `rotation` (radians) turns the whole set
-// about the normal: a few cones in one fixed frame see a scene from a few arbitrary
-// azimuths, and the same ones on every point of a plane, so callers vary it between
-// neighbouring points and let their gathers average (docs/vct.md, "Interleaved cone sets").
-void vct_diffuse_cone(int index, int count, float rotation, out vec3 direction, out float weight,
-                      out float tan_half_angle) {
+// about the normal and `ring_position` (0..1, 0.5 = the ring's middle) moves every cone within
+// its ring: a few cones in one fixed set see a scene from a few arbitrary directions, and the
+// same ones on every point of a plane, so callers vary both between neighbouring points and
+// let their gathers average (docs/vct.md, "Interleaved cone sets").
+void vct_diffuse_cone(int index, int count, float rotation, float ring_position,
+                      out vec3 direction, out float weight, out float tan_half_angle) {
   count = clamp(count, 1, VCT_MAX_DIFFUSE_CONES);
   index = clamp(index, 0, count - 1);
   weight = VCT_PI / float(count);
   const float golden_angle = 2.39996323;  // pi (3 - sqrt 5)
-  float sin2 = count == 1 ? 0.0 : (float(index) + 0.5) / float(count);
+  float ring = clamp(ring_position, 0.0, 1.0);
+  float sin2 = count == 1 ? 0.0 : min((float(index) + ring) / float(count), 1.0 - 1e-4);
   float sin_theta = sqrt(sin2);
   float cos_theta = sqrt(1.0 - sin2);
   float phi = float(index) * golden_angle + rotation;
@@ -427,11 +460,12 @@ void vct_diffuse_cone(int index, int count, float rotation, out vec3 direction, 
 }
 
 // Irradiance E (W/m^2) at anchor-relative p, a point of a surface with unit normal n, from
-// `count` diffuse cones turned by `rotation` about n (vct_diffuse_cone), and the
+// `count` diffuse cones turned by `rotation` about n and placed at `ring_position` in their
+// rings (vct_diffuse_cone), and the
 // ambient-occlusion visibility (1 = open) in `visibility`. The cones start `normal_offset`
 // (metres) off the surface. Outgoing diffuse radiance is c_diff / pi * E.
-vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float rotation, float normal_offset,
-                            VctTraceSettings s, out float visibility) {
+vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float rotation, float ring_position,
+                            float normal_offset, VctTraceSettings s, out float visibility) {
   vec3 t, b;
   vct_tangent_frame(n, t, b);
   vec3 origin = p + n * normal_offset;
@@ -441,7 +475,7 @@ vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float rotation, float nor
   for (int i = 0; i < count; ++i) {
     vec3 d;
     float weight, tan_half;
-    vct_diffuse_cone(i, count, rotation, d, weight, tan_half);
+    vct_diffuse_cone(i, count, rotation, ring_position, d, weight, tan_half);
     VctCone cone = vct_cone_from_surface(origin, normalize(t * d.x + b * d.y + n * d.z), tan_half,
                                          n, normal_offset);
     VctConeResult r = vct_trace_cone(cone, s);

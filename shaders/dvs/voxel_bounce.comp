@@ -58,8 +58,7 @@ void main() {
       s.start_distance = pc.start_offset * size;
       s.ao_falloff = 0.0;
       // One lane: the pixels' final gather integrates over many voxels and filters what one
-      // voxel's gather aliases, at a quarter of the cost. (Spread lanes also gathered 15% less
-      // of a closed emitting box here, tests/dvs/voxel_bounce_test.cpp; not understood yet.)
+      // voxel's gather aliases, at a quarter of the cost.
       s.lanes = 1;
       float visibility;
       // Gather from the voxel's average surface plane (contracts/voxel_volumes.glsl), with the cone
@@ -71,7 +70,7 @@ void main() {
       // per-pixel gather does, lost 5% per bounce in the closed box of
       // tests/dvs/dvs_energy_test.cpp (2 voxel bounces: 0.96 -> 0.85 of radiosity at 32^3),
       // though every uniform turn stays within 0.98-1.00 there: not understood yet.
-      vec3 irradiance = vct_diffuse_irradiance(surface, unit_n, pc.cones, 0.0,
+      vec3 irradiance = vct_diffuse_irradiance(surface, unit_n, pc.cones, 0.0, 0.5,
                                                (pc.normal_offset - plane) * size, s, visibility);
       radiance += albedo.rgb * (1.0 / VCT_PI) * sanitize_radiance(irradiance);
     }

@@ -45,8 +45,9 @@ void main() {
     results[i] = vec4(r.radiance, 1.0 - r.opacity);
   } else {
     float visibility;
-    // One fixed cone set (rotation 0): probes compare single gathers with closed forms.
-    vec3 e = vct_diffuse_irradiance(p, d, pc.diffuse_cones, 0.0, pc.normal_offset, s, visibility);
+    // One fixed cone set (no turn, ring middles): probes compare single gathers with closed forms.
+    vec3 e = vct_diffuse_irradiance(p, d, pc.diffuse_cones, 0.0, 0.5, pc.normal_offset, s,
+                                    visibility);
     results[i] = vec4(e, visibility);
   }
 }

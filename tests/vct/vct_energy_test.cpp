@@ -88,15 +88,25 @@ struct FloorUnderAnEmitter {
   static constexpr float kViewHalfWidth = 0.45f;  // on the floor
 };
 
-scene::Scene floor_under_an_emitter(bool turned) {
-  scene::SceneBuilder b(turned ? "floor_under_an_emitter_turned" : "floor_under_an_emitter");
+// The emitting square: its centre's (x, z) and its side.
+struct EmitterPlacement {
+  glm::vec2 centre{0.25f, 0.0f};
+  float side = FloorUnderAnEmitter::kSide;
+};
+
+// (x, z) -> (z, -x) is the quarter turn about +y.
+constexpr EmitterPlacement kTurnedEmitter{{0.0f, -0.25f}, FloorUnderAnEmitter::kSide};
+// A square as wide as the view, centred: most of the floor's light comes from high above it.
+constexpr EmitterPlacement kWideEmitter{{0.0f, 0.0f}, 0.6f};
+
+scene::Scene floor_under_an_emitter(const EmitterPlacement& emitter = {}) {
+  scene::SceneBuilder b("floor_under_an_emitter");
   using S = FloorUnderAnEmitter;
   const int floor = b.add_material(matte(glm::vec3(S::kFloorAlbedo)));
   const int lamp = b.add_material(matte(glm::vec3(0.0f), glm::vec3(S::kRadiance)));
   b.add_quad("floor", {-0.5f, 0.0f, -0.5f}, {0.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 0.0f}, floor);
-  // (x, z) -> (z, -x) is the quarter turn about +y.
-  const glm::vec2 centre = turned ? glm::vec2(0.0f, -0.25f) : glm::vec2(0.25f, 0.0f);
-  const float side = S::kSide;
+  const glm::vec2 centre = emitter.centre;
+  const float side = emitter.side;
   const float height = S::kHeight;
   // Facing -y, towards the floor.
   b.add_quad("emitter", {centre.x - 0.5f * side, height, centre.y - 0.5f * side},
@@ -111,7 +121,8 @@ TEST_F(GpuTest, InterleavedConeSetsDoNotDependOnTheFramesAzimuth) {
   double mean[2][2][2];  // [turned][interleaved][cones 4, 6]
   for (int turned = 0; turned < 2; ++turned) {
     RenderHarness harness(voxel_gi_render_setup(
-        vct_gi_setup(32), floor_under_an_emitter(turned != 0), kEnergyBoundImageSize));
+        vct_gi_setup(32), floor_under_an_emitter(turned != 0 ? kTurnedEmitter : EmitterPlacement{}),
+        kEnergyBoundImageSize));
     for (int interleaved = 0; interleaved < 2; ++interleaved) {
       harness.executor().set_param("cone_trace.interleave", interleaved != 0 ? "4" : "1");
       for (int c = 0; c < 2; ++c) {
@@ -134,19 +145,18 @@ TEST_F(GpuTest, InterleavedConeSetsDoNotDependOnTheFramesAzimuth) {
   }
 }
 
-// The floor's one-bounce light from the emitter (the plain scene) in closed form: at each pixel
-// centre's floor point, rho L F with F the point-to-square form factor (the emitter is
-// one-sided and seen from its back, so every pixel sees the floor).
-double floor_under_an_emitter_mean_indirect(uint32_t size) {
+// The floor's one-bounce light from the emitter in closed form: at each pixel centre's floor
+// point, rho L F with F the point-to-square form factor (the emitter is one-sided and seen from
+// its back, so every pixel sees the floor).
+double floor_under_an_emitter_mean_indirect(uint32_t size, const EmitterPlacement& emitter = {}) {
   using S = FloorUnderAnEmitter;
-  const double x0 = 0.25 - 0.5 * S::kSide;
-  const double x1 = 0.25 + 0.5 * S::kSide;
-  const double half = 0.5 * S::kSide;
-  const glm::dvec3 square[4] = {{x0, S::kHeight, -half},
-                                {x1, S::kHeight, -half},
-                                {x1, S::kHeight, half},
-                                {x0, S::kHeight, half}};
-  const CameraPixelRays rays(floor_under_an_emitter(false).cameras.front(), size);
+  const double x0 = emitter.centre.x - 0.5 * emitter.side;
+  const double x1 = emitter.centre.x + 0.5 * emitter.side;
+  const double z0 = emitter.centre.y - 0.5 * emitter.side;
+  const double z1 = emitter.centre.y + 0.5 * emitter.side;
+  const glm::dvec3 square[4] = {
+      {x0, S::kHeight, z0}, {x1, S::kHeight, z0}, {x1, S::kHeight, z1}, {x0, S::kHeight, z1}};
+  const CameraPixelRays rays(floor_under_an_emitter(emitter).cameras.front(), size);
   double sum = 0.0;
   for (uint32_t y = 0; y < size; ++y) {
     for (uint32_t x = 0; x < size; ++x) {
@@ -168,13 +178,46 @@ double floor_under_an_emitter_mean_indirect(uint32_t size) {
 TEST_F(GpuTest, FloorUnderAnEmittingSquare) {
   const double expected = floor_under_an_emitter_mean_indirect(kEnergyBoundImageSize);
   for (uint32_t resolution : {32u, 64u}) {
-    const double rendered = render_mean_indirect(
-        vct_gi_setup(resolution), floor_under_an_emitter(false), kEnergyBoundImageSize);
+    const double rendered = render_mean_indirect(vct_gi_setup(resolution), floor_under_an_emitter(),
+                                                 kEnergyBoundImageSize);
     const double ratio = rendered / expected;
     std::printf("[emitting square] vct %u^3: %.5f against the closed form %.5f, ratio %.4f\n",
                 resolution, rendered, expected, ratio);
     EXPECT_GT(ratio, 0.9) << resolution;
     EXPECT_LT(ratio, 1.75) << resolution;
+  }
+}
+
+// The lanes of a capped cone spread its width at the axis's angle to the receiver. Lanes
+// offset along a straight tangent leaned towards the horizon, the more so the wider the cone,
+// and took light that comes from high above away from every receiver: under this wide emitter
+// 4 lanes gathered 0.960 / 0.971 of the axis alone at 4 / 6 cones, and the Cornell boxes were 5
+// to 15 points darker (docs/error-budget.md, fifth round); lanes at the axis's elevation
+// gather 0.997 / 1.000 of it. The closed form itself is exceeded (1.26x at 32^3) by the same
+// spread of optical depth across the ray that makes the small square too bright (above); held
+// from both sides for now so that it cannot grow unseen.
+TEST_F(GpuTest, ConeLanesKeepTheAxisElevation) {
+  const double expected = floor_under_an_emitter_mean_indirect(kEnergyBoundImageSize, kWideEmitter);
+  RenderHarness harness(voxel_gi_render_setup(
+      vct_gi_setup(32), floor_under_an_emitter(kWideEmitter), kEnergyBoundImageSize));
+  for (int cones : {4, 6}) {
+    harness.executor().set_param("cone_trace.diffuse_cones", std::to_string(cones));
+    double mean[2];
+    for (int lanes : {1, 4}) {
+      harness.executor().set_param("cone_trace.lanes", std::to_string(lanes));
+      harness.render();
+      const RenderedImage indirect = harness.output("indirect");
+      expect_finite_non_negative(indirect, "floor under a wide emitter");
+      mean[lanes == 1 ? 0 : 1] = mean_luminance(indirect);
+    }
+    std::printf(
+        "[lanes] %d cones, wide emitter: 1 lane %.4f, 4 lanes %.4f of the closed form %.5f\n",
+        cones, mean[0] / expected, mean[1] / expected, expected);
+    EXPECT_NEAR(mean[1] / mean[0], 1.0, 0.015) << cones << " cones";
+    for (double m : mean) {
+      EXPECT_GT(m / expected, 0.9) << cones << " cones";
+      EXPECT_LT(m / expected, 1.35) << cones << " cones";
+    }
   }
 }
 

@@ -340,8 +340,8 @@ void vct_lane_directions(VctCone cone, VctConeFrame frame, int lanes,
   // Directions at elevation angle theta inside a cone of half angle h around the axis span the
   // azimuths |phi| <= phi_max, cos h = cos^2 theta + sin^2 theta cos phi_max.
   float cos_half = inversesqrt(1.0 + frame.tan_half * frame.tan_half);
-  float cos_phi_max = clamp((cos_half - rise * rise) / max(horizontal * horizontal, 1e-6), -1.0, 1.0);
-  float phi_max = acos(cos_phi_max);
+  float cos_phi_max = (cos_half - rise * rise) / max(horizontal * horizontal, 1e-6);
+  float phi_max = acos(clamp(cos_phi_max, -1.0, 1.0));
   for (int j = 0; j < VCT_MAX_LANES; ++j) {
     float phi = (2.0 * (float(j) + 0.5) / float(lanes) - 1.0) * phi_max;
     directions[j] = along * cos(phi) + side * (horizontal * sin(phi)) + cone.receiver_normal * rise;

@@ -226,9 +226,10 @@ bool gather(ivec2 pixel, out GbufferSample g, out vec4 value) {
   return true;
 #else
   float visibility;
-  vec3 irradiance =
-      vct_diffuse_irradiance(p, g.normal, pc.diffuse_cones, interleave_rotation(pixel),
-                             interleave_ring_position(pixel), pc.normal_offset * voxel, s, visibility);
+  vec3 irradiance = vct_diffuse_irradiance(p, g.normal, pc.diffuse_cones,
+                                           interleave_rotation(pixel),
+                                           interleave_ring_position(pixel),
+                                           pc.normal_offset * voxel, s, visibility);
   vec3 c_diff = g.base_color * (1.0 - g.metallic);
   value = vec4(c_diff / VCT_PI * irradiance, visibility);
   return true;

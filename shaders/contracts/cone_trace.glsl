@@ -342,7 +342,7 @@ void vct_lane_directions(VctCone cone, VctConeFrame frame, int lanes,
   float cos_half = inversesqrt(1.0 + frame.tan_half * frame.tan_half);
   float cos_phi_max = (cos_half - rise * rise) / max(horizontal * horizontal, 1e-6);
   float phi_max = acos(clamp(cos_phi_max, -1.0, 1.0));
-  for (int j = 0; j < VCT_MAX_LANES; ++j) {
+  for (int j = 0; j < lanes; ++j) {
     float phi = (2.0 * (float(j) + 0.5) / float(lanes) - 1.0) * phi_max;
     directions[j] = along * cos(phi) + side * (horizontal * sin(phi)) + cone.receiver_normal * rise;
   }

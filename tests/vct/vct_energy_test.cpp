@@ -72,13 +72,7 @@ INSTANTIATE_TEST_SUITE_P(
              voxel_resolution_name(std::get<1>(param_info.param));
     });
 
-// A floor lit only by a small emitting square above it, off its centre, and the same scene
-// turned 90 degrees about the vertical through the floor's centre. The voxel grid (anchored on
-// whole voxels) and the camera's view of the floor map onto themselves; only the emitter's
-// azimuth, seen from the floor, turns. One cone frame for the whole floor sees the two scenes
-// from different azimuths, and a few cones miss the emitter differently (docs/vct.md,
-// "Interleaved cone sets"); the interleaved gather averages turns that a quarter turn maps onto
-// themselves, so the two means must agree.
+// A floor lit only by an emitting square above it, seen from a camera straight above.
 struct FloorUnderAnEmitter {
   static constexpr float kFloorAlbedo = 0.8f;
   static constexpr float kRadiance = 10.0f;
@@ -94,7 +88,12 @@ struct EmitterPlacement {
   float side = FloorUnderAnEmitter::kSide;
 };
 
-// (x, z) -> (z, -x) is the quarter turn about +y.
+// The default square turned 90 degrees about the vertical through the floor's centre ((x, z) ->
+// (z, -x)). The voxel grid (anchored on whole voxels) and the camera's view of the floor map
+// onto themselves; only the emitter's azimuth, seen from the floor, turns. One cone frame for
+// the whole floor sees the two scenes from different azimuths, and a few cones miss the emitter
+// differently (docs/vct.md, "Interleaved cone sets"); the interleaved gather averages turns
+// that a quarter turn maps onto themselves, so the two means must agree.
 constexpr EmitterPlacement kTurnedEmitter{{0.0f, -0.25f}, FloorUnderAnEmitter::kSide};
 // A square as wide as the view, centred: most of the floor's light comes from high above it.
 constexpr EmitterPlacement kWideEmitter{{0.0f, 0.0f}, 0.6f};

@@ -30,6 +30,7 @@ struct FilterPush {
 };
 
 constexpr uint32_t kLocal = 4;
+constexpr uint32_t kNormalBinding = 14;
 
 class FilterPass final : public graph::Pass {
  public:
@@ -41,14 +42,20 @@ class FilterPass final : public graph::Pass {
     } else {
       volume_slots_.push_back(contracts::kFilteredSlot);
     }
+    level_coverage_ = anisotropic_ && ctx.has("normal");
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0}};
     for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
       bindings.push_back({2 + 2 * v, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
       bindings.push_back({3 + 2 * v, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
     }
+    if (level_coverage_) {
+      bindings.push_back({kNormalBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+    }
     pipeline_.emplace(graph::make_pass_compute(ctx, "vct/filter.comp", bindings, sizeof(FilterPush),
-                                               false, {{"ANISOTROPIC", anisotropic_ ? "1" : "0"}}));
+                                               false,
+                                               {{"ANISOTROPIC", anisotropic_ ? "1" : "0"},
+                                                {"LEVEL_COVERAGE", level_coverage_ ? "1" : "0"}}));
     versions_.forget();
   }
 
@@ -73,6 +80,11 @@ class FilterPass final : public graph::Pass {
       writer.storage_buffer(0, *info.buffer);
       writer.sampled_image(1, radiance.view, radiance.layout,
                            ctx.gpu().sampler(gpu::SamplerKind::NearestClamp));
+      if (level_coverage_) {
+        const graph::BoundResource& normal = ctx.resource("normal");
+        writer.sampled_image(kNormalBinding, normal.view, normal.layout,
+                             ctx.gpu().sampler(gpu::SamplerKind::NearestClamp));
+      }
       for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
         const graph::BoundResource& out = ctx.resource(volume_slots_[v]);
         writer.storage_image(2 + 2 * v, out.image->view(src_mip), out.layout);
@@ -109,9 +121,10 @@ class FilterPass final : public graph::Pass {
   }
 
   bool anisotropic_ = true;
+  bool level_coverage_ = false;
   std::vector<std::string> volume_slots_;
   std::optional<gpu::ComputePipeline> pipeline_;
-  graph::InputVersions versions_{{"clipmap_info", "radiance"}};
+  graph::InputVersions versions_{{"clipmap_info", "radiance", "normal"}};
 };
 
 void validate_filter(graph::PassCheck& check) {
@@ -128,7 +141,7 @@ void validate_filter(graph::PassCheck& check) {
   }
   graph::check_same_clipmap_layout(
       check, "radiance",
-      {contracts::kFilteredSlot, "pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"});
+      {contracts::kFilteredSlot, "normal", "pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"});
 }
 
 graph::SlotSpec filtered_output(const char* name, std::string doc) {
@@ -155,7 +168,13 @@ void register_filter(graph::Registry& registry) {
       graph::sampled_clipmap_input("radiance",
                                    "radiance clipmap (rgb outgoing radiance, a opacity) from "
                                    "vct.inject or dvs.voxel_lighting; only mip 0 is read",
-                                   false, {VK_FORMAT_R16G16B16A16_SFLOAT})};
+                                   false, {VK_FORMAT_R16G16B16A16_SFLOAT}),
+      graph::sampled_clipmap_input(
+          "normal",
+          "voxel normals (common.voxelize); with them, in anisotropic mode, a coarser level's "
+          "voxels that no finer level covers hold a surface as thin as the finer level's filter "
+          "would (opaque across a plane, 1/2^level of it along)",
+          true, {VK_FORMAT_R16G16B16A16_SFLOAT})};
   info.outputs = {filtered_output("filtered", "isotropic filtered volume (mode isotropic)")};
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   for (size_t i = 0; i < contracts::kDirectionalSlots.size(); ++i) {

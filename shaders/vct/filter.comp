@@ -4,7 +4,8 @@
 // from the radiance clipmap (rgb = outgoing radiance, a = opacity, not premultiplied).
 //   STAGE_LEVEL: mip 0 of one clipmap level. Where the next finer level covers a voxel's eight
 //     children, the voxel is their filter (levels agree); elsewhere the injected radiance,
-//     premultiplied. Levels run finest first, so level l-1 is final when level l reads it.
+//     premultiplied, with (LEVEL_COVERAGE, anisotropic only) the opacity along each axis that
+//     the filter would have given a surface voxelized at the finest level's thickness. Levels run finest first, so level l-1 is final when level l reads it.
 //   STAGE_MIP: mip m of every level from mip m-1 of the same level (texel t <- 2t + {0,1}^3).
 // Isotropic: box filter of the 8 children. Anisotropic (ANISOTROPIC=1): per direction, the
 // front-to-back composite of each child pair along the axis, averaged over the 4 columns.
@@ -13,6 +14,7 @@
 // contracts/vct_volume_encoding.glsl.
 #include "lib/common.glsl"
 #include "contracts/vct_volume_encoding.glsl"
+#include "contracts/voxel_volumes.glsl"
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
 #include "contracts/voxel_clipmap.glsl"
@@ -25,10 +27,17 @@
 #else
 #define VOLUMES 1
 #endif
+#ifndef LEVEL_COVERAGE
+#define LEVEL_COVERAGE 0
+#endif
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 layout(set = 0, binding = 1) uniform sampler3D radiance;  // mip 0 read with texelFetch
+#if LEVEL_COVERAGE
+// The voxels' averaged normals (contracts/voxel_volumes.glsl), read with texelFetch.
+layout(set = 0, binding = 14) uniform sampler3D voxel_normal;
+#endif
 // Source (mip m-1, or mip 0 of the finer level) and destination views of each volume.
 layout(set = 0, binding = 2, rgba16f) uniform image3D src0;
 layout(set = 0, binding = 3, rgba16f) uniform image3D dst0;
@@ -126,6 +135,25 @@ vec4 filter_children(int volume, ivec3 child[8]) {
 #endif
 }
 
+#if LEVEL_COVERAGE
+// The opacity along each axis of a voxel of a coarser level (level > 0) that no finer level
+// covers, made to agree with what the filter gives where one does. The surfaces are voxelized
+// one finest voxel thick; filtered up l levels, a plane crossing the voxel stays opaque to
+// rays across it but covers only 1/2^l of the columns that run along it. Injected directly at
+// level l it would be opaque from every side, 2^l times thicker than its filtered twin next
+// to it. For a plane of unit normal n the axis k sees |n_k| of it across and the rest along.
+// A voxel whose writers' normals cancel (|n| < 0.25: both faces of a thin wall, a crease) or
+// that has no normal is left opaque from every side.
+vec3 level_axis_coverage(vec4 normal_texel, int level) {
+  vec3 n = normal_texel.xyz;
+  if (level == 0 || !voxel_normal_occupied(normal_texel) || any(isnan(n)) || dot(n, n) < 0.0625) {
+    return vec3(1.0);
+  }
+  vec3 across = abs(normalize(n));
+  return across + (1.0 - across) * exp2(-float(level));
+}
+#endif
+
 void main() {
   int r = voxel_resolution();
   int levels = voxel_level_count();
@@ -151,8 +179,16 @@ void main() {
       for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, filter_children(v, child));
     } else {
       vec4 injected = scrub(texelFetch(radiance, texel, 0));
+#if LEVEL_COVERAGE
+      vec3 coverage = level_axis_coverage(texelFetch(voxel_normal, texel, 0), level);
+      for (int v = 0; v < VOLUMES; ++v) {
+        float a = injected.a * coverage[v / 2];
+        store_dst(v, texel, vec4(injected.rgb * a, a));
+      }
+#else
       vec4 premultiplied = vec4(injected.rgb * injected.a, injected.a);
       for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, premultiplied);
+#endif
     }
     return;
   }

@@ -1,12 +1,14 @@
 #pragma once
-// Graph texts of the volume-level tests: uploaded radiance -> vct.filter (isotropic or
-// anisotropic), with the filtered volumes persistent so tests can read them afterwards.
+// Graph texts of the volume-level tests: uploaded radiance (and, with `with_normals`, voxel
+// normals) -> vct.filter (isotropic or anisotropic), with the filtered volumes persistent so
+// tests can read them afterwards.
 
 #include <string>
 
 namespace voxgi::test {
 
-inline std::string filter_graph(int resolution, int levels, bool anisotropic) {
+inline std::string filter_graph(int resolution, int levels, bool anisotropic,
+                                bool with_normals = false) {
   const std::string clipmap = "{ \"type\": \"clipmap\", \"format\": \"rgba16f\", \"resolution\": " +
                               std::to_string(resolution) +
                               ", \"levels\": " + std::to_string(levels);
@@ -14,6 +16,8 @@ inline std::string filter_graph(int resolution, int levels, bool anisotropic) {
       "\"voxel.clipmap_info\": { \"type\": \"buffer\", \"size\": 288, \"persistent\": true },\n"
       "\"vct.radiance\": " +
       clipmap + ", \"persistent\": true },\n";
+  if (with_normals) resources += "\"vct.normal\": " + clipmap + ", \"persistent\": true },\n";
+  const std::string normal_slot = with_normals ? ", \"normal\": \"vct.normal\"" : "";
   std::string outputs;
   if (anisotropic) {
     const char* slots[] = {"pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"};
@@ -31,13 +35,16 @@ inline std::string filter_graph(int resolution, int levels, bool anisotropic) {
   return "{ \"name\": \"vct-filter-test\",\n \"resources\": {\n" + resources +
          "},\n \"passes\": [\n"
          " { \"name\": \"volumes\", \"type\": \"vcttest.volumes\",\n"
-         "   \"out\": { \"clipmap_info\": \"voxel.clipmap_info\", \"radiance\": \"vct.radiance\" } "
+         "   \"out\": { \"clipmap_info\": \"voxel.clipmap_info\", \"radiance\": \"vct.radiance\"" +
+         normal_slot +
+         " } "
          "},\n"
          " { \"name\": \"filter\", \"type\": \"vct.filter\", \"params\": { \"mode\": \"" +
          std::string(anisotropic ? "anisotropic" : "isotropic") +
          "\" },\n"
-         "   \"in\": { \"clipmap_info\": \"voxel.clipmap_info\", \"radiance\": \"vct.radiance\" "
-         "},\n"
+         "   \"in\": { \"clipmap_info\": \"voxel.clipmap_info\", \"radiance\": \"vct.radiance\"" +
+         normal_slot +
+         " },\n"
          "   \"out\": { " +
          outputs +
          " } }\n"

@@ -42,7 +42,7 @@ class FilterPass final : public graph::Pass {
     } else {
       volume_slots_.push_back(contracts::kFilteredSlot);
     }
-    level_coverage_ = anisotropic_ && ctx.has("normal");
+    level_coverage_ = ctx.has("normal");
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0}};
     for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
@@ -171,9 +171,9 @@ void register_filter(graph::Registry& registry) {
                                    false, {VK_FORMAT_R16G16B16A16_SFLOAT}),
       graph::sampled_clipmap_input(
           "normal",
-          "voxel normals (common.voxelize); with them, in anisotropic mode, a coarser level's "
-          "voxels that no finer level covers hold a surface as thin as the finer level's filter "
-          "would (opaque across a plane, 1/2^level of it along)",
+          "voxel normals (common.voxelize); with them, a coarser level's voxels that no finer "
+          "level covers hold a surface as thin as the finer level's filter would (anisotropic: "
+          "opaque across a plane, 1/2^level of it along)",
           true, {VK_FORMAT_R16G16B16A16_SFLOAT})};
   info.outputs = {filtered_output("filtered", "isotropic filtered volume (mode isotropic)")};
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};

@@ -4,7 +4,7 @@
 // from the radiance clipmap (rgb = outgoing radiance, a = opacity, not premultiplied).
 //   STAGE_LEVEL: mip 0 of one clipmap level. Where the next finer level covers a voxel's eight
 //     children, the voxel is their filter (levels agree); elsewhere the injected radiance,
-//     premultiplied, with (LEVEL_COVERAGE, anisotropic only) the opacity along each axis that
+//     premultiplied, with (LEVEL_COVERAGE) the opacity (along each axis when anisotropic) that
 //     the filter would have given a surface voxelized at the finest level's thickness. Levels run finest first, so level l-1 is final when level l reads it.
 //   STAGE_MIP: mip m of every level from mip m-1 of the same level (texel t <- 2t + {0,1}^3).
 // Isotropic: box filter of the 8 children. Anisotropic (ANISOTROPIC=1): per direction, the
@@ -136,21 +136,30 @@ vec4 filter_children(int volume, ivec3 child[8]) {
 }
 
 #if LEVEL_COVERAGE
-// The opacity along each axis of a voxel of a coarser level (level > 0) that no finer level
-// covers, made to agree with what the filter gives where one does. The surfaces are voxelized
-// one finest voxel thick; filtered up l levels, a plane crossing the voxel stays opaque to
-// rays across it but covers only 1/2^l of the columns that run along it. Injected directly at
-// level l it would be opaque from every side, 2^l times thicker than its filtered twin next
-// to it. For a plane of unit normal n the axis k sees |n_k| of it across and the rest along.
-// A voxel whose writers' normals cancel (|n| < 0.25: both faces of a thin wall, a crease) or
-// that has no normal is left opaque from every side.
-vec3 level_axis_coverage(vec4 normal_texel, int level) {
+// The opacity of a voxel of a coarser level (level > 0) that no finer level covers, made to
+// agree with what the filter gives where one does. The surfaces are voxelized one finest voxel
+// thick; filtered up l levels, a plane crossing the voxel stays opaque to rays across it but
+// covers only 1/2^l of the columns that run along it (anisotropic), or of the voxel
+// (isotropic, for a plane on an axis; one of unit normal n touches about (|n_x| + |n_y| +
+// |n_z|) / max_k |n_k| times as many fine voxels). Injected directly at level l it would be
+// opaque from every side, 2^l times thicker than its filtered twin next to it. A voxel whose
+// writers' normals cancel (|n| < 0.25: both faces of a thin wall, a crease) or that has no
+// normal is left opaque from every side. Returns the coverage along x, y, z (isotropic: the
+// same in all three).
+vec3 level_coverage(vec4 normal_texel, int level) {
   vec3 n = normal_texel.xyz;
   if (level == 0 || !voxel_normal_occupied(normal_texel) || any(isnan(n)) || dot(n, n) < 0.0625) {
     return vec3(1.0);
   }
   vec3 across = abs(normalize(n));
-  return across + (1.0 - across) * exp2(-float(level));
+  float fine = exp2(-float(level));
+#if ANISOTROPIC
+  // Axis k sees |n_k| of the plane across and the rest along.
+  return across + (1.0 - across) * fine;
+#else
+  float largest = max(across.x, max(across.y, across.z));
+  return vec3(min(1.0, fine * (across.x + across.y + across.z) / largest));
+#endif
 }
 #endif
 
@@ -180,7 +189,7 @@ void main() {
     } else {
       vec4 injected = scrub(texelFetch(radiance, texel, 0));
 #if LEVEL_COVERAGE
-      vec3 coverage = level_axis_coverage(texelFetch(voxel_normal, texel, 0), level);
+      vec3 coverage = level_coverage(texelFetch(voxel_normal, texel, 0), level);
       for (int v = 0; v < VOLUMES; ++v) {
         float a = injected.a * coverage[v / 2];
         store_dst(v, texel, vec4(injected.rgb * a, a));

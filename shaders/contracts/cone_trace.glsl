@@ -21,8 +21,9 @@
 //   child columns of the front-to-back composite along +X (children at lower x in front).
 //   Voxels with no finer data (level 0 mip 0, the part of a level no finer level covers) hold
 //   the injected value in all six; where vct.filter has the voxel normals, the voxels of a
-//   coarser level l > 0 among them hold along axis k the opacity a (|n_k| + (1 - |n_k|) / 2^l)
-//   that filtering a surface voxelized at the finest level would have given them.
+//   coarser level l > 0 among them hold the opacity that filtering a surface voxelized at the
+//   finest level would have given them (along axis k a (|n_k| + (1 - |n_k|) / 2^l); isotropic:
+//   the fraction of fine voxels the surface fills).
 //
 // BINDINGS (the includer provides them)
 //   Include contracts/voxel_clipmap.glsl first (the clipmap info buffer). Define VCT_VOLUME_SET and

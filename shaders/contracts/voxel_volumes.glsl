@@ -15,6 +15,9 @@
 // centre can be half a voxel closer to it than any surface in the voxel, and 1/r^2 makes that
 // a large error.
 const float VOXEL_PLANE_OFFSET_SCALE = 0.25;
+// An averaged normal shorter than this comes from writers whose faces cancelled (both faces of
+// a thin wall, a crease): such a voxel has no facing.
+const float VOXEL_NORMAL_MIN_LENGTH = 0.25;
 bool voxel_normal_occupied(vec4 normal_texel) { return normal_texel.w > 0.5; }
 float voxel_encode_plane_offset(float d) {
   return 1.0 + VOXEL_PLANE_OFFSET_SCALE * clamp(d, -1.0, 1.0);

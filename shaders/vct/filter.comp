@@ -5,7 +5,8 @@
 //   STAGE_LEVEL: mip 0 of one clipmap level. Where the next finer level covers a voxel's eight
 //     children, the voxel is their filter (levels agree); elsewhere the injected radiance,
 //     premultiplied, with (LEVEL_COVERAGE) the opacity (along each axis when anisotropic) that
-//     the filter would have given a surface voxelized at the finest level's thickness. Levels run finest first, so level l-1 is final when level l reads it.
+//     the filter would have given a surface voxelized at the finest level's thickness. Levels
+//     run finest first, so level l-1 is final when level l reads it.
 //   STAGE_MIP: mip m of every level from mip m-1 of the same level (texel t <- 2t + {0,1}^3).
 // Isotropic: box filter of the 8 children. Anisotropic (ANISOTROPIC=1): per direction, the
 // front-to-back composite of each child pair along the axis, averaged over the 4 columns.
@@ -143,12 +144,13 @@ vec4 filter_children(int volume, ivec3 child[8]) {
 // (isotropic, for a plane on an axis; one of unit normal n touches about (|n_x| + |n_y| +
 // |n_z|) / max_k |n_k| times as many fine voxels). Injected directly at level l it would be
 // opaque from every side, 2^l times thicker than its filtered twin next to it. A voxel whose
-// writers' normals cancel (|n| < 0.25: both faces of a thin wall, a crease) or that has no
-// normal is left opaque from every side. Returns the coverage along x, y, z (isotropic: the
+// writers' normals cancel (|n| < VOXEL_NORMAL_MIN_LENGTH) or that has no normal is left opaque
+// from every side. Returns the coverage along x, y, z (isotropic: the
 // same in all three).
 vec3 level_coverage(vec4 normal_texel, int level) {
   vec3 n = normal_texel.xyz;
-  if (level == 0 || !voxel_normal_occupied(normal_texel) || any(isnan(n)) || dot(n, n) < 0.0625) {
+  if (level == 0 || !voxel_normal_occupied(normal_texel) || any(isnan(n)) ||
+      dot(n, n) < VOXEL_NORMAL_MIN_LENGTH * VOXEL_NORMAL_MIN_LENGTH) {
     return vec3(1.0);
   }
   vec3 across = abs(normalize(n));

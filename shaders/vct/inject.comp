@@ -5,7 +5,7 @@
 // the outgoing Lambert radiance of the voxel (isotropic), a = opacity (albedo alpha), with the
 // light evaluated on the voxel's average surface plane, not at its centre. The shadow maps
 // decide visibility; cos uses the voxel's averaged normal. A voxel whose normal
-// is missing or whose faces cancelled (|n| < NORMAL_MIN_LENGTH) is treated as facing each
+// is missing or whose faces cancelled (|n| < VOXEL_NORMAL_MIN_LENGTH) is treated as facing each
 // light (cos = 1): a thin wall lit from one side glows rather than going black, and the
 // shadow map still decides whether light reaches it. Output is sanitized HDR.
 #include "lib/common.glsl"
@@ -24,7 +24,6 @@
 #endif
 
 const float INJECT_PI = 3.14159265358979323846;
-const float NORMAL_MIN_LENGTH = 0.25;
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
@@ -82,7 +81,7 @@ void main() {
   vec3 n_raw = normal_occupied.xyz;
   if (any(isnan(n_raw)) || any(isinf(n_raw))) n_raw = vec3(0.0);
   float n_len = length(n_raw);
-  bool has_normal = n_len >= NORMAL_MIN_LENGTH;
+  bool has_normal = n_len >= VOXEL_NORMAL_MIN_LENGTH;
   vec3 n = has_normal ? n_raw / n_len : vec3(0.0);
 
   // The voxel's surface: its centre moved onto the average surface plane

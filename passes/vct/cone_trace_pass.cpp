@@ -66,6 +66,7 @@ constexpr uint32_t kBindingResult = 7;
 constexpr uint32_t kBindingAo = 8;
 constexpr uint32_t kBindingScratch = 9;
 constexpr uint32_t kBindingShadow = 10;
+constexpr uint32_t kBindingFacing = 11;
 
 class ConeTracePass final : public graph::Pass {
  public:
@@ -77,20 +78,23 @@ class ConeTracePass final : public graph::Pass {
     half_ = ctx.choice("resolution") == "half";
     has_ao_ = !specular_ && ctx.has("ao");
     has_shadow_ = !specular_ && ctx.has("shadow");
-    const std::vector<gpu::ShaderDefine> defines = {
+    facing_ = ctx.has("voxel_normal");
+    std::vector<gpu::ShaderDefine> defines = {
         {"SPECULAR", specular_ ? "1" : "0"},
         {"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
         {"HAS_AO", has_ao_ ? "1" : "0"},
         {"AO_FORMAT", has_ao_ ? scalar_format_qualifier(ctx.info("ao").format) : "r16f"},
         {"SHADOW_FORMAT",
          has_shadow_ ? scalar_format_qualifier(ctx.info("shadow").format) : "r16f"}};
+    if (facing_) defines.push_back({"HAS_FACING", "1"});
     std::vector<gpu::Binding> gbuffer = {{kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0}};
     for (uint32_t i = 0; i < 4; ++i) {
       gbuffer.push_back({kBindingGbuffer + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
     }
-    const std::vector<gpu::Binding> volumes = {
+    std::vector<gpu::Binding> volumes = {
         {kBindingClipmapInfo, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
         {kBindingVolumes, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0, anisotropic_ ? 6u : 1u}};
+    if (facing_) volumes.push_back({kBindingFacing, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
     const gpu::Binding result = {kBindingResult, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0};
     const gpu::Binding storage_ao = {kBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0};
     const gpu::Binding storage_shadow = {kBindingShadow, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0};
@@ -159,6 +163,10 @@ class ConeTracePass final : public graph::Pass {
         images.push_back({repeat, v.view, v.layout});
       }
       writer.image_array(kBindingVolumes, images);
+      if (facing_) {
+        const graph::BoundResource& n = ctx.resource("voxel_normal");
+        writer.sampled_image(kBindingFacing, n.view, n.layout, repeat);
+      }
     };
     auto bind_storage = [&](gpu::DescriptorWriter& writer, uint32_t binding, const char* slot) {
       const graph::BoundResource& r = ctx.resource(slot);
@@ -230,6 +238,7 @@ class ConeTracePass final : public graph::Pass {
   bool half_ = false;
   bool has_ao_ = false;
   bool has_shadow_ = false;
+  bool facing_ = false;
   std::unique_ptr<contracts::VolumeSampler> sampler_;
   std::optional<gpu::ComputePipeline> trace_;
   std::optional<gpu::ComputePipeline> shadow_;
@@ -239,6 +248,8 @@ class ConeTracePass final : public graph::Pass {
 void validate_cone_trace(graph::PassCheck& check) {
   contracts::check_clipmap_info_size(check);
   check_filtered_volumes_bound(check);
+  graph::check_same_clipmap_layout(check, "voxel_normal",
+                                   {contracts::kFilteredSlot, contracts::kDirectionalSlots[0]});
   if (check.choice("resolution") == "half" && !check.has("half_res")) {
     check.param_error("resolution",
                       "'half' needs the output slot 'half_res' bound to an rgba16f image of half "
@@ -284,6 +295,11 @@ std::vector<graph::SlotSpec> trace_inputs() {
         contracts::GbufferTarget::Material, contracts::GbufferTarget::Depth}) {
     inputs.push_back(contracts::gbuffer_input(target));
   }
+  inputs.push_back(graph::sampled_clipmap_input(
+      "voxel_normal",
+      "voxel normals (common.voxelize); with them a cone sees a voxel's light only from the "
+      "side its surfaces face",
+      true, {VK_FORMAT_R16G16B16A16_SFLOAT}));
   return inputs;
 }
 

@@ -34,6 +34,10 @@
 //   anisotropic filtering, which has no meaning for explicit lods. contracts::VolumeSampler
 //   is exactly that; gpu::SamplerKind::LinearRepeatMipmapped also works but adds anisotropy
 //   where the device has it.
+//   Optionally define VCT_FACING_NORMALS as the name of a sampler3D over the voxel normals
+//   (contracts/voxel_volumes.glsl, same clipmap layout, sampled like the volumes): then a
+//   sample at mip 0 of a level sends its light only towards the side its surfaces face
+//   (vct_facing below).
 //
 // API
 //   vct_sample(p, dir, lod)            filtered volume value (stored form) at a point
@@ -122,6 +126,25 @@ vec4 vct_fetch_directional(vec3 p, vec3 dir, int level, int mip) {
 }
 #endif
 
+#ifdef VCT_FACING_NORMALS
+// How much of a voxel's light a cone travelling along dir receives: a surface sends light only
+// to the side its normal faces; seen from behind it is as opaque and dark (the inside of a
+// column, the unlit underside of a sunlit slab). n4 is the voxel normal texel interpolated like
+// the volumes (contracts/voxel_volumes.glsl: xyz the mean of the writers' unit normals, w
+// about 1 where occupied, so xyz / w is the occupied voxels' mean normal). The test is only as
+// good as that mean: where the writers agree (|mean| near 1, one surface) it decides; where
+// they spread (a corner's two faces 90 degrees apart give 0.71, a thin wall's cancel) the
+// mean's side is not the side every face lights, so the voxel stays visible from all sides.
+float vct_facing(vec4 n4, vec3 dir) {
+  if (!(n4.w > 0.05)) return 1.0;
+  vec3 n = n4.xyz / n4.w;
+  float agreement = length(n);
+  if (!(agreement > 0.8)) return 1.0;
+  float behind = clamp(0.5 + 2.0 * dot(n / agreement, dir), 0.0, 1.0);
+  return 1.0 - behind * smoothstep(0.8, 0.95, agreement);
+}
+#endif
+
 // Integer level of detail k (voxel edge = level-0 edge * 2^k): clipmap level k while there is
 // one, then the mips of the coarsest level.
 vec4 vct_fetch_lod(vec3 p, vec3 dir, int k) {
@@ -129,10 +152,17 @@ vec4 vct_fetch_lod(vec3 p, vec3 dir, int k) {
   int mip = k - level;
   if (!voxel_level_valid(level)) return vec4(0.0);
 #if VCT_ANISOTROPIC
-  return vct_fetch_directional(p, dir, level, mip);
+  vec4 v = vct_fetch_directional(p, dir, level, mip);
 #else
-  return vct_fetch(vct_volumes[0], p, level, mip);
+  vec4 v = vct_fetch(vct_volumes[0], p, level, mip);
 #endif
+#ifdef VCT_FACING_NORMALS
+  // Only samples that carry light need the normals (most of a cone's samples are empty space).
+  if (mip == 0 && any(greaterThan(v.rgb, vec3(0.0)))) {
+    v.rgb *= vct_facing(vct_fetch(VCT_FACING_NORMALS, p, level, 0), dir);
+  }
+#endif
+  return v;
 }
 
 // The coarsest level of detail a point can use.

@@ -10,6 +10,9 @@
 #include "contracts/voxel_clipmap.glsl"
 #define VCT_VOLUME_SET 0
 #define VCT_VOLUME_BINDING 1
+// voxel_normal again, with the volumes' sampler: the cones' facing test.
+layout(set = 0, binding = 6) uniform sampler3D facing_normals;
+#define VCT_FACING_NORMALS facing_normals
 #include "contracts/cone_trace.glsl"
 #include "lib/common.glsl"
 #include "dvs/voxel_volume.glsl"

@@ -13,11 +13,19 @@
 // SHADOW_ONLY 1 the dispatch writes nothing else (the extra pass of resolution 'half').
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
+#ifndef HAS_FACING
+#define HAS_FACING 0
+#endif
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
 #include "contracts/voxel_clipmap.glsl"
 #define VCT_VOLUME_SET 0
 #define VCT_VOLUME_BINDING 1
+#if HAS_FACING
+// The voxel normals (optional input voxel_normal): the cones' facing test.
+layout(set = 0, binding = 11) uniform sampler3D facing_normals;
+#define VCT_FACING_NORMALS facing_normals
+#endif
 #include "contracts/cone_trace.glsl"
 #include "vct/gbuffer_sample.glsl"
 

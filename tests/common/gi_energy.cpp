@@ -62,8 +62,9 @@ double LitSquare::shadow_side() const {
 
 std::string LitSquare::label() const {
   char text[96];
-  std::snprintf(text, sizeof text, "%s light, h = %.2f m",
-                light == SquareLight::Directional ? "directional" : "point", height);
+  std::snprintf(text, sizeof text, "%s light, h = %.2f m%s",
+                light == SquareLight::Directional ? "directional" : "point", height,
+                under ? " under the square" : "");
   return text;
 }
 
@@ -76,8 +77,13 @@ scene::Scene lit_square_scene(const LitSquare& setup) {
   const int receiver = b.add_material(matte(glm::vec3(1.0f)));
   // Facing +y.
   b.add_quad("square", {-0.5f * a, 0.0f, -0.5f * a}, {0, 0, a}, {a, 0, 0}, square);
-  // Facing -y, towards the square.
-  b.add_quad("receiver", {-0.5f * r, h, -0.5f * r}, {r, 0, 0}, {0, 0, r}, receiver);
+  if (setup.under) {
+    // Facing +y, towards the square's underside.
+    b.add_quad("receiver", {-0.5f * r, -h, -0.5f * r}, {0, 0, r}, {r, 0, 0}, receiver);
+  } else {
+    // Facing -y, towards the square.
+    b.add_quad("receiver", {-0.5f * r, h, -0.5f * r}, {r, 0, 0}, {0, 0, r}, receiver);
+  }
   scene::Light light;
   if (setup.light == SquareLight::Directional) {
     light.type = scene::LightType::Directional;
@@ -87,10 +93,12 @@ scene::Scene lit_square_scene(const LitSquare& setup) {
     light.intensity = static_cast<float>(LitSquare::kIntensity);
   }
   b.add_light(light, {0.0f, static_cast<float>(setup.light_height()), 0.0f}, {0.0f, -1.0f, 0.0f});
-  // 4 cm under the receiver, looking up; the view's half-width there is 6 mm, inside the
-  // receiver's 7.5 mm.
-  const float distance = 0.04f;
-  b.add_camera("under_receiver", {0.0f, h - distance, 0.0f}, {0.0f, h, 0.0f},
+  // 4 cm from the receiver (at most half its distance to the square) on its facing side,
+  // looking at it; the view's half-width there is 6 mm, inside the receiver's 7.5 mm.
+  const float distance = std::min(0.04f, 0.5f * h);
+  const float y = setup.under ? -h : h;
+  const float side = setup.under ? 1.0f : -1.0f;
+  b.add_camera("at_receiver", {0.0f, y + side * distance, 0.0f}, {0.0f, y, 0.0f},
                2.0f * std::atan(0.006f / distance), {0.0f, 0.0f, 1.0f});
   return b.finish();
 }
@@ -456,6 +464,22 @@ IndirectComparison compare_lit_box(const VoxelGiSetup& gi, const BoxRadiosity& r
 
 // ---------------------------------------------------------------------------------------------
 // Shared expectations
+
+void expect_unlit_underside_sends_nothing(const VoxelGiSetup& gi, SquareLight light,
+                                          double fraction) {
+  for (double height : kUndersideHeights) {
+    const LitSquare above{light, height};
+    const LitSquare under{light, height, true};
+    const IndirectComparison c = {render_at_every_placement(gi, lit_square_scene(under), 16),
+                                  lit_square_one_bounce_irradiance(above) / pi};
+    std::printf(
+        "[unlit underside] %s, %s: %.5f of the lit side's %.5f, ratio %.4f (per "
+        "placement%s)\n",
+        gi.label.c_str(), under.label().c_str(), c.mean_ratio() * c.expected, c.expected,
+        c.mean_ratio(), c.ratios().c_str());
+    EXPECT_LT(c.mean_ratio(), fraction) << gi.label << ", " << under.label();
+  }
+}
 
 void expect_lit_square_matches_closed_form(const VoxelGiSetup& gi, SquareLight light,
                                            double tolerance) {

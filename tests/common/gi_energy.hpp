@@ -72,6 +72,9 @@ enum class SquareLight { Directional, Point };
 struct LitSquare {
   SquareLight light = SquareLight::Directional;
   double height = 0.5;  // receiver above the square (m)
+  // The receiver `height` under the square instead, facing up at its unlit underside, in the
+  // square's shadow: no light reaches it in one bounce (the camera then looks down at it).
+  bool under = false;
 
   static constexpr double kSide = 1.0;
   static constexpr double kAlbedo = 0.8;  // 204/255: exact in the 8-bit voxel albedo
@@ -277,6 +280,16 @@ inline constexpr double kReceiverHeights[] = {0.25, 0.5, 0.75};
 // A family whose measured error is larger passes its own tolerance and states the cause.
 void expect_lit_square_matches_closed_form(const VoxelGiSetup& gi, SquareLight light,
                                            double tolerance = kLitSquareTolerance);
+// The receiver under the square (LitSquare::under), close to it: the square's lit top sends
+// no light down through it, so the receiver's indirect light must stay below `fraction` of
+// what a receiver as far above it gets (the closed form); prints the ratios. Close, because
+// only the finest mip of each level knows which side a surface faces
+// (contracts/cone_trace.glsl, vct_facing): a cone that has widened into a level's coarser
+// mips still sees both sides of a surface.
+inline constexpr double kUndersideHeights[] = {0.02, 0.03};
+inline constexpr double kUndersideFraction = 0.05;
+void expect_unlit_underside_sends_nothing(const VoxelGiSetup& gi, SquareLight light,
+                                          double fraction = kUndersideFraction);
 // The same for the closed box against `radiosity`.
 void expect_lit_box_matches_radiosity(const VoxelGiSetup& gi, const BoxRadiosity& radiosity,
                                       double tolerance = kAnalyticTolerance);

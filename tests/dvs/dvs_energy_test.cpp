@@ -28,6 +28,12 @@ TEST_P(DvsAnalyticTest, ReceiverOverASquareUnderAPointLight) {
   expect_lit_square_matches_closed_form(dvs_gi_setup(GetParam(), 0), SquareLight::Point);
 }
 
+// A cone sees a voxel's light only from the side its surface faces (contracts/cone_trace.glsl,
+// vct_facing): under the square, in its shadow, nothing comes down through it.
+TEST_P(DvsAnalyticTest, ReceiverUnderASquareGetsNoLightThroughIt) {
+  expect_unlit_underside_sends_nothing(dvs_gi_setup(GetParam(), 0), SquareLight::Directional);
+}
+
 TEST_P(DvsAnalyticTest, ClosedBoxUnderAPointLightPerBounce) {
   const BoxRadiosity radiosity(12, 3);
   for (int bounces = 0; bounces <= 2; ++bounces) {

@@ -29,6 +29,12 @@ TEST_P(VctAnalyticTest, ReceiverOverASquareUnderAPointLight) {
   expect_lit_square_matches_closed_form(vct_gi_setup(GetParam()), SquareLight::Point);
 }
 
+// A cone sees a voxel's light only from the side its surface faces (contracts/cone_trace.glsl,
+// vct_facing): under the square, in its shadow, nothing comes down through it.
+TEST_P(VctAnalyticTest, ReceiverUnderASquareGetsNoLightThroughIt) {
+  expect_unlit_underside_sends_nothing(vct_gi_setup(GetParam()), SquareLight::Directional);
+}
+
 TEST_P(VctAnalyticTest, ClosedBoxUnderAPointLight) {
   expect_lit_box_matches_radiosity(vct_gi_setup(GetParam()), BoxRadiosity(12, 1));
 }

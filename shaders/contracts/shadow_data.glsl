@@ -2,6 +2,7 @@
 #define VOXGI_SHADOW_DATA_GLSL
 // Contract: the shadow-map data common.shadow_maps writes and lighting passes of any family
 // read. C++ twin: passes/contracts/shadow_data.hpp (std430, 416 bytes per light). No bindings.
+#include "lib/sampling.glsl"
 struct ShadowLight {
   mat4 view_proj[6];  // relative to origin: clip = view_proj * (p - origin)
   vec4 origin;
@@ -49,5 +50,37 @@ float shadow_surface_visibility(sampler2DArrayShadow maps, ShadowLight s, float 
   if (any(greaterThan(abs(ndc.xy), vec2(1.0))) || ndc.z > 1.0) return 1.0;
   vec2 uv = ndc.xy * 0.5 + 0.5;
   return texture(maps, vec4(uv, layer_base + float(face), ndc.z));
+}
+
+// Most lookups per edge of a voxel's surface patch (shadow_voxel_visibility).
+#define SHADOW_VOXEL_MAX_TAPS 4
+
+// The fraction of a voxel's surface that light `s` reaches: the mean of
+// shadow_surface_visibility over a grid of points on the surface's plane patch, the square of
+// side `size` centred on p in the plane of unit normal `plane_normal` (p on that plane, as for
+// shadow_surface_visibility). One point would decide a whole voxel wider than a shadow texel
+// by wherever the averaged plane's centre falls: in a corner, a crease or under a ledge
+// that point can lie in a shadow most of the surface is out of. Taps per edge: enough for
+// about one per texel, at most SHADOW_VOXEL_MAX_TAPS; one where the voxel is no wider than a
+// texel or has no plane (plane_normal zero).
+float shadow_voxel_visibility(sampler2DArrayShadow maps, ShadowLight s, float layer_base, vec3 p,
+                              vec3 plane_normal, vec3 facing, float size, float offset,
+                              float distance_to_light) {
+  float texel = shadow_texel_world(s, distance_to_light);
+  int taps = int(clamp(ceil(size / max(texel, 1e-12)), 1.0, float(SHADOW_VOXEL_MAX_TAPS)));
+  if (taps == 1 || dot(plane_normal, plane_normal) < 0.25) {
+    return shadow_surface_visibility(maps, s, layer_base, p, facing, offset, distance_to_light);
+  }
+  vec3 t, b;
+  orthonormal_basis(plane_normal, t, b);
+  float sum = 0.0;
+  for (int i = 0; i < taps; ++i) {
+    for (int j = 0; j < taps; ++j) {
+      vec2 uv = (vec2(i, j) + 0.5) / float(taps) - 0.5;
+      vec3 q = p + (t * uv.x + b * uv.y) * size;
+      sum += shadow_surface_visibility(maps, s, layer_base, q, facing, offset, distance_to_light);
+    }
+  }
+  return sum / float(taps * taps);
 }
 #endif

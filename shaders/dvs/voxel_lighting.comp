@@ -125,12 +125,13 @@ void main() {
       }
 #if HAS_SHADOW_MAPS
       if (pc.occlusion == OCCLUSION_SHADOW_MAP && i < pc.shadow_slots) {
-        // From the surface point, off it by two shadow-map texels (contracts/shadow_data.glsl); the
-        // voxel-ray start offset would look past occluders close in front of the surface.
+        // Over the voxel's surface patch, each point off the surface by two shadow-map texels
+        // (contracts/shadow_data.glsl); the voxel-ray start offset would look past occluders
+        // close in front of the surface.
         visibility =
-            shadow_surface_visibility(shadow_maps, shadow_lights[i], float(i * 6u),
-                                      p + voxel_clipmap.anchor.xyz, offset_dir, 0.0,
-                                      distance_to_light);
+            shadow_voxel_visibility(shadow_maps, shadow_lights[i], float(i * 6u),
+                                    p + voxel_clipmap.anchor.xyz, n, offset_dir, size, 0.0,
+                                    distance_to_light);
       }
 #endif
       irradiance += light.radiance * (attenuation * cosine * visibility);

@@ -4,7 +4,9 @@
 //   L_out = albedo / pi * sum_lights(E_light * cos * visibility) + emission
 // the outgoing Lambert radiance of the voxel (isotropic), a = opacity (albedo alpha), with the
 // light evaluated on the voxel's average surface plane, not at its centre. The shadow maps
-// decide visibility; cos uses the voxel's averaged normal. A voxel whose normal
+// decide visibility, averaged over the voxel's patch of that plane where the voxel is wider
+// than a shadow texel (contracts/shadow_data.glsl); cos uses the voxel's averaged normal. A
+// voxel whose normal
 // is missing or whose faces cancelled (|n| < VOXEL_NORMAL_MIN_LENGTH) is treated as facing each
 // light (cos = 1): a thin wall lit from one side glows rather than going black, and the
 // shadow map still decides whether light reaches it. Output is sanitized HDR.
@@ -47,10 +49,11 @@ layout(push_constant) uniform Push {
 
 #if HAS_SHADOWS
 // Visibility of the surface point p (world space) from light `index`: contracts/shadow_data.glsl.
-float shadow_visibility(uint index, vec3 p, vec3 facing, float offset, float distance_to_light) {
+float shadow_visibility(uint index, vec3 p, vec3 plane_normal, vec3 facing, float size,
+                        float offset, float distance_to_light) {
   if (pc.shadows_enabled == 0u || index >= pc.shadow_slots) return 1.0;
-  return shadow_surface_visibility(shadow_maps, shadow_lights[index], float(index * 6u), p,
-                                   facing, offset, distance_to_light);
+  return shadow_voxel_visibility(shadow_maps, shadow_lights[index], float(index * 6u), p,
+                                 plane_normal, facing, size, offset, distance_to_light);
 }
 #endif
 
@@ -117,7 +120,8 @@ void main() {
     // so a small offset suffices, and a larger one would look past occluders lying close in
     // front of the surface (a lamp's shade just under a ceiling).
     vec3 facing = has_normal ? n : l;
-    visibility = shadow_visibility(i, p, facing, pc.normal_offset * size, distance_to_light);
+    visibility = shadow_visibility(i, p, n, facing, size, pc.normal_offset * size,
+                                   distance_to_light);
 #endif
     irradiance += light.radiance * (attenuation * cos_theta * visibility);
   }

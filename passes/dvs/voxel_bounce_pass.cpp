@@ -43,7 +43,6 @@ class VoxelBouncePass final : public graph::Pass {
         {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
         {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
         {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0},
-        {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
     };
     pipeline_.emplace(graph::make_pass_compute(ctx, "dvs/voxel_bounce.comp", bindings,
                                                sizeof(BouncePush), false,
@@ -83,12 +82,10 @@ class VoxelBouncePass final : public graph::Pass {
     const char* inputs[] = {"albedo", "normal", "direct"};
     for (uint32_t i = 0; i < 3; ++i) {
       const graph::BoundResource& r = ctx.resource(inputs[i]);
-      writer.sampled_image(2 + i, r.view, r.layout, nearest);
+      // The normals are also interpolated and wrapped like the volumes (the cones' facing test).
+      writer.sampled_image(2 + i, r.view, r.layout, i == 1 ? repeat : nearest);
     }
     writer.storage_image(5, storage_view(out), out.layout);
-    // The same normals, interpolated and wrapped like the volumes, for the cones' facing test.
-    const graph::BoundResource& normal = ctx.resource("normal");
-    writer.sampled_image(6, normal.view, normal.layout, repeat);
 
     const VkExtent3D extent = out.info->extent;
     const BouncePush push{{extent.width, extent.height, extent.depth},

@@ -10,9 +10,10 @@
 #include "contracts/voxel_clipmap.glsl"
 #define VCT_VOLUME_SET 0
 #define VCT_VOLUME_BINDING 1
-// voxel_normal again, with the volumes' sampler: the cones' facing test.
-layout(set = 0, binding = 6) uniform sampler3D facing_normals;
-#define VCT_FACING_NORMALS facing_normals
+// The voxel normals, bound with the volumes' sampler (texelFetch ignores it): read per voxel
+// below, and interpolated by the cones' facing test.
+layout(set = 0, binding = 3) uniform sampler3D voxel_normal;
+#define VCT_FACING_NORMALS voxel_normal
 #include "contracts/cone_trace.glsl"
 #include "lib/common.glsl"
 #include "dvs/voxel_volume.glsl"
@@ -21,7 +22,6 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 // binding 0: VoxelClipmapInfo; binding 1: vct_volumes (contracts/cone_trace.glsl)
 layout(set = 0, binding = 2) uniform sampler3D voxel_albedo;
-layout(set = 0, binding = 3) uniform sampler3D voxel_normal;
 layout(set = 0, binding = 4) uniform sampler3D direct_radiance;
 layout(set = 0, binding = 5, rgba16f) writeonly uniform image3D out_radiance;
 

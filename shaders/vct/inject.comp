@@ -6,10 +6,10 @@
 // light evaluated on the voxel's average surface plane, not at its centre. The shadow maps
 // decide visibility, averaged over the voxel's patch of that plane where the voxel is wider
 // than a shadow texel (contracts/shadow_data.glsl); cos uses the voxel's averaged normal. A
-// voxel whose normal
-// is missing or whose faces cancelled (|n| < VOXEL_NORMAL_MIN_LENGTH) is treated as facing each
-// light (cos = 1): a thin wall lit from one side glows rather than going black, and the
-// shadow map still decides whether light reaches it. Output is sanitized HDR.
+// voxel whose normal is missing or whose faces cancelled (|n| < VOXEL_NORMAL_MIN_LENGTH) is
+// treated as facing each light (cos = 1): a thin wall lit from one side glows rather than
+// going black, and the shadow map still decides whether light reaches it. Output is
+// sanitized HDR.
 #include "lib/common.glsl"
 #include "contracts/voxel_volumes.glsl"
 #include "lib/scene.glsl"

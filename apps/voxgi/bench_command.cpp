@@ -1,6 +1,6 @@
 // voxgi bench: measures graphs (GI techniques and their parameter sweeps) on scenes against a
-// cached reference, and writes results.json, results.csv and a report. `bench merge` and
-// `bench bvh` live in their own files.
+// cached reference, and writes results.json, results.csv and a report. `bench merge`,
+// `bench bvh` and `bench voxel-light` live in their own files.
 
 #include <unistd.h>
 
@@ -42,7 +42,9 @@ using Clock = std::chrono::steady_clock;
 const char* const kBenchUsage =
     "usage: voxgi bench FILE.json [options]          measure the bench file's configurations\n"
     "       voxgi bench merge OUT_DIR SHARD_DIR...   join shard results into one report\n"
-    "       voxgi bench bvh --scene S [--repeat N]   BVH build time and SAH cost of a scene\n";
+    "       voxgi bench bvh --scene S [--repeat N]   BVH build time and SAH cost of a scene\n"
+    "       voxgi bench voxel-light --scene S        a voxel's injected light against its "
+    "surfaces\n";
 
 namespace {
 
@@ -444,7 +446,8 @@ int run_bench(const std::vector<std::string>& argv) {
   std::error_code missing;
   if (!args.positional().empty() &&
       !fs::exists(runtime::resolve_graph_path(args.positional()[0]), missing)) {
-    if (const std::string close = closest_match(args.positional()[0], {"merge", "bvh"});
+    if (const std::string close =
+            closest_match(args.positional()[0], {"merge", "bvh", "voxel-light"});
         !close.empty()) {
       throw UsageError("voxgi bench: no bench file '" + args.positional()[0] +
                        "' (did you mean 'voxgi bench " + close + "'?)");
@@ -550,6 +553,9 @@ int bench_command(const std::vector<std::string>& args) {
   }
   if (!args.empty() && args[0] == "bvh") {
     return bench_bvh_command(std::vector<std::string>(args.begin() + 1, args.end()));
+  }
+  if (!args.empty() && args[0] == "voxel-light") {
+    return bench_voxel_light_command(std::vector<std::string>(args.begin() + 1, args.end()));
   }
   return run_bench(args);
 }

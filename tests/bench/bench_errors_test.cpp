@@ -1,6 +1,9 @@
 // `voxgi bench` with bad bench files and arguments: one clear message naming the file, line,
 // column and field, a non-zero exit, and no rendering (the checks run before a device opens).
-// Also `voxgi bench bvh`, which needs no device either.
+// Also `voxgi bench bvh` and `voxgi bench voxel-light`, which need no device either.
+
+#include <cmath>
+#include <sstream>
 
 #include "engine/image/image.hpp"
 #include "tests/apps/voxgi_cli_fixture.hpp"
@@ -204,6 +207,33 @@ TEST_F(VoxgiBenchErrors, BvhStatisticsOfABuiltInScene) {
   const ProcessResult bad = voxgi({"bench", "bvh", "--scene", "nope.glb"});
   EXPECT_TRUE(exited_with(bad, 1));
   EXPECT_TRUE(stderr_has(bad, {"nope.glb"}));
+}
+
+// The injected-light model is exact for voxels that hold one plane (the floor of
+// plane-directional, away from its box), and the command names a scene it cannot measure.
+TEST_F(VoxgiBenchErrors, VoxelLightOfABuiltInScene) {
+  const ProcessResult r = voxgi({"bench", "voxel-light", "--scene", "plane-directional",
+                                 "--voxel-mm", "100", "--sizes", "2"});
+  ASSERT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(stdout_has(r, {"edge m", "writers", "area", "[0.95,1.00)"}));
+  // Each row: edge, voxels, exact, biases; then per band "[a,b) share writers area".
+  std::istringstream lines(r.out);
+  std::string line;
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    const size_t band = line.find("[0.95,1.00)");
+    if (line.find('|') == std::string::npos || band == std::string::npos) continue;
+    std::istringstream fields(line.substr(band + 11));
+    std::string share, writers, area;
+    fields >> share >> writers >> area;
+    EXPECT_LT(std::abs(std::stod(writers)), 0.2) << line;
+    EXPECT_LT(std::abs(std::stod(area)), 0.2) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2) << r.out;
+  const ProcessResult none = voxgi({"bench", "voxel-light", "--scene", "cornell"});
+  EXPECT_TRUE(exited_with(none, 1));
+  EXPECT_TRUE(stderr_has(none, {"cornell", "no directional light"}));
 }
 
 }  // namespace

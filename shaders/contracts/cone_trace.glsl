@@ -48,6 +48,7 @@
 // Positions are anchor-relative (voxel_relative(world)); distances in metres.
 
 #include "contracts/vct_volume_encoding.glsl"
+#include "contracts/voxel_volumes.glsl"
 
 #ifndef VCT_VOLUME_SET
 #define VCT_VOLUME_SET 0
@@ -131,17 +132,15 @@ vec4 vct_fetch_directional(vec3 p, vec3 dir, int level, int mip) {
 // to the side its normal faces; seen from behind it is as opaque and dark (the inside of a
 // column, the unlit underside of a sunlit slab). n4 is the voxel normal texel interpolated like
 // the volumes (contracts/voxel_volumes.glsl: xyz the mean of the writers' unit normals, w
-// about 1 where occupied, so xyz / w is the occupied voxels' mean normal). The test is only as
-// good as that mean: where the writers agree (|mean| near 1, one surface) it decides; where
-// they spread (a corner's two faces 90 degrees apart give 0.71, a thin wall's cancel) the
-// mean's side is not the side every face lights, so the voxel stays visible from all sides.
+// about 1 where occupied, so xyz / w is the occupied voxels' mean normal). The share of the
+// voxel's surface that faces the cone (voxel_front_share) follows from how far the writers
+// agree: all of it or none for one plane, a part for a corner, a moulding or a column seen
+// from the side, half for a thin wall's two faces. (A test only where |mean| >= 0.8 sent the
+// full light of the voxels below, up to a third of Sponza's coarse ones, towards their backs:
+// docs/error-budget.md, eighth round.)
 float vct_facing(vec4 n4, vec3 dir) {
   if (!(n4.w > 0.05)) return 1.0;
-  vec3 n = n4.xyz / n4.w;
-  float agreement = length(n);
-  if (!(agreement > 0.8)) return 1.0;
-  float behind = clamp(0.5 + 2.0 * dot(n / agreement, dir), 0.0, 1.0);
-  return 1.0 - behind * smoothstep(0.8, 0.95, agreement);
+  return voxel_front_share(n4.xyz / n4.w, -dir);
 }
 #endif
 

@@ -9,8 +9,13 @@
 // voxel the exact value is the area mean of max(n . l, 0) x visibility. The injected model
 // takes the voxel's mean normal as the voxelizer forms it (the plain mean over the triangles
 // that write the voxel, one write per triangle), normalized, and multiplies its clamped
-// cosine by the area mean visibility. Printed per voxel edge: the mean over voxels of each,
-// the model's bias, and the same split by how far the writers' normals agree.
+// cosine by a visibility. Which visibility the injections' shadow lookups stand for lies
+// between two that are printed: the area mean over all the voxel's surfaces (surfaces turned
+// away from the light count as unlit, so together with the cosine they count twice), and the
+// area mean over the surfaces that face the light (what lookups just in front of the mean
+// surface plane see where that plane faces the light). Printed per voxel edge: the mean of
+// the exact value over voxels, the model's bias with each visibility and with an area-weighted
+// mean normal, and the same split by how far the writers' normals agree.
 
 #include <algorithm>
 #include <cmath>
@@ -41,6 +46,8 @@ struct VoxelSums {
   double area = 0.0;
   double lit = 0.0;                 // area x max(n.l, 0) x visibility
   double visible = 0.0;             // area x visibility
+  double facing_area = 0.0;         // area of the surfaces facing the light
+  double facing_visible = 0.0;      // their area x visibility
   glm::dvec3 area_normal_sum{0.0};  // area x normal
   glm::dvec3 writer_normal_sum{0.0};
   uint32_t writers = 0;
@@ -50,8 +57,9 @@ struct VoxelSums {
 struct Totals {
   size_t voxels = 0;
   double exact = 0.0;
-  double model = 0.0;
-  double area_model = 0.0;
+  double model = 0.0;         // writers' mean normal, mean visibility of all surfaces
+  double facing_model = 0.0;  // writers' mean normal, visibility of the light-facing ones
+  double area_model = 0.0;    // area-weighted mean normal, light-facing visibility
 };
 
 std::vector<SurfacePoint> sample_surfaces(const scene::Bvh& bvh, double finest_edge,
@@ -153,11 +161,13 @@ int bench_voxel_light_command(const std::vector<std::string>& argv) {
   std::printf("scene %s, light towards (%.3f, %.3f, %.3f), %zu surface points\n",
               scene.source.c_str(), l.x, l.y, l.z, points.size());
   std::printf(
-      "model: the clamped cosine of the writers' mean normal (normalized) x the voxel's mean\n"
-      "visibility; writers: plain mean over the triangles in the voxel (the voxelizer's),\n"
-      "area: mean weighted by each triangle's area in the voxel. Bias of the mean over voxels;\n"
-      "then, per band of the writers' agreement |mean|, the share of voxels and the bias.\n");
-  std::printf("%9s %9s %9s %9s %9s |\n", "edge m", "voxels", "exact", "writers", "area");
+      "model: the clamped cosine of the voxel's mean normal (normalized) x a visibility. Bias of\n"
+      "the mean over voxels for: all = writers' mean normal (the voxelizer's: a plain mean over\n"
+      "the voxel's triangles) x the mean visibility of all its surfaces; facing = the same normal\n"
+      "x the visibility of its surfaces that face the light; area = an area-weighted mean normal\n"
+      "x that visibility. Then per band of the writers' agreement |mean|: the share of voxels\n"
+      "and the three biases.\n");
+  std::printf("%9s %9s %9s %9s %9s %9s |\n", "edge m", "voxels", "exact", "all", "facing", "area");
   for (int k = 0; k < sizes; ++k) {
     const double edge = finest * std::ldexp(1.0, k);
     std::unordered_map<uint64_t, VoxelSums> voxels;
@@ -168,6 +178,10 @@ int bench_voxel_light_command(const std::vector<std::string>& argv) {
       v.lit += area * std::max(0.0f, glm::dot(q.normal, l)) * q.visible;
       v.visible += area * q.visible;
       v.area_normal_sum += area * glm::dvec3(q.normal);
+      if (glm::dot(q.normal, l) > 0.0f) {
+        v.facing_area += area;
+        v.facing_visible += area * q.visible;
+      }
       if (v.triangles.insert(q.triangle).second) {
         v.writer_normal_sum += glm::dvec3(q.normal);
         ++v.writers;
@@ -181,26 +195,30 @@ int bench_voxel_light_command(const std::vector<std::string>& argv) {
       const double agreement = glm::length(mean);
       const double exact = v.lit / v.area;
       const double visible = v.visible / v.area;
+      const double facing_visible = v.facing_area > 0.0 ? v.facing_visible / v.facing_area : 0.0;
       const double model = injected_cosine(mean, l) * visible;
-      const double area_model = injected_cosine(v.area_normal_sum / v.area, l) * visible;
+      const double facing_model = injected_cosine(mean, l) * facing_visible;
+      const double area_model = injected_cosine(v.area_normal_sum / v.area, l) * facing_visible;
       for (Totals* t :
            {&all, &band[std::upper_bound(bands + 1, bands + 4, agreement) - bands - 1]}) {
         ++t->voxels;
         t->exact += exact;
         t->model += model;
+        t->facing_model += facing_model;
         t->area_model += area_model;
       }
     }
     auto bias = [](double model, double exact) {
       return exact > 0.0 ? 100.0 * (model / exact - 1.0) : 0.0;
     };
-    std::printf("%9.3f %9zu %9.4f %+8.1f%% %+8.1f%% |", edge, all.voxels,
+    std::printf("%9.3f %9zu %9.4f %+8.1f%% %+8.1f%% %+8.1f%% |", edge, all.voxels,
                 all.exact / double(all.voxels), bias(all.model, all.exact),
-                bias(all.area_model, all.exact));
+                bias(all.facing_model, all.exact), bias(all.area_model, all.exact));
     for (int b = 0; b < 4; ++b) {
-      std::printf(" [%.2f,%.2f) %4.1f%% %+6.1f%% %+6.1f%%", bands[b], std::min(bands[b + 1], 1.0),
-                  100.0 * double(band[b].voxels) / double(all.voxels),
-                  bias(band[b].model, band[b].exact), bias(band[b].area_model, band[b].exact));
+      std::printf(" [%.2f,%.2f) %4.1f%% %+6.1f%% %+6.1f%% %+6.1f%%", bands[b],
+                  std::min(bands[b + 1], 1.0), 100.0 * double(band[b].voxels) / double(all.voxels),
+                  bias(band[b].model, band[b].exact), bias(band[b].facing_model, band[b].exact),
+                  bias(band[b].area_model, band[b].exact));
     }
     std::printf("\n");
   }

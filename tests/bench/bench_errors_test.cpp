@@ -235,6 +235,11 @@ TEST_F(VoxgiBenchErrors, VoxelLightOfABuiltInScene) {
   const ProcessResult none = voxgi({"bench", "voxel-light", "--scene", "cornell"});
   EXPECT_TRUE(exited_with(none, 1));
   EXPECT_TRUE(stderr_has(none, {"cornell", "no directional light"}));
+  // More surface points than memory allows is refused before any is made.
+  const ProcessResult huge = voxgi({"bench", "voxel-light", "--scene", "plane-directional",
+                                    "--voxel-mm", "1", "--samples", "1024"});
+  EXPECT_FALSE(exited_with(huge, 0));
+  EXPECT_TRUE(stderr_has(huge, {"--voxel-mm", "--samples", "surface points"}));
 }
 
 }  // namespace

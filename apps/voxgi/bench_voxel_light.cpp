@@ -18,6 +18,7 @@
 // mean normal, and the same split by how far the writers' normals agree.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -51,14 +52,27 @@ struct VoxelSums {
   glm::dvec3 area_normal_sum{0.0};    // area x normal
   glm::dvec3 writer_normal_sum{0.0};  // one unit normal per triangle in the voxel
   std::unordered_set<uint32_t> triangles;
+  // Per group of the faces volume (the signed axis a normal leans furthest along): the
+  // writers' normal sum and count, the light-facing area and its area x visibility.
+  std::array<glm::dvec3, 6> group_normal_sum{};
+  std::array<double, 6> group_writers{}, group_area{}, group_facing_area{}, group_facing_visible{};
 };
+
+// The group of the faces volume a unit normal falls in (contracts/voxel_volumes.glsl).
+int face_group(glm::vec3 n) {
+  const glm::vec3 a = glm::abs(n);
+  const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+  return axis * 2 + (n[axis] < 0.0f ? 1 : 0);
+}
 
 struct Totals {
   size_t voxels = 0;
   double exact = 0.0;
-  double model = 0.0;         // writers' mean normal, mean visibility of all surfaces
-  double facing_model = 0.0;  // writers' mean normal, visibility of the light-facing ones
-  double area_model = 0.0;    // area-weighted mean normal, light-facing visibility
+  double model = 0.0;             // writers' mean normal, mean visibility of all surfaces
+  double facing_model = 0.0;      // writers' mean normal, visibility of the light-facing ones
+  double area_model = 0.0;        // area-weighted mean normal, light-facing visibility
+  double group_model = 0.0;       // each facing group as a plane, its own light-facing visibility
+  double group_area_model = 0.0;  // the same, groups weighted by their area
 };
 
 std::vector<SurfacePoint> sample_surfaces(const scene::Bvh& bvh, double finest_edge,
@@ -193,9 +207,13 @@ int bench_voxel_light_command(const std::vector<std::string>& argv) {
       "the mean over voxels for: all = writers' mean normal (the voxelizer's: a plain mean over\n"
       "the voxel's triangles) x the mean visibility of all its surfaces; facing = the same normal\n"
       "x the visibility of its surfaces that face the light; area = an area-weighted mean normal\n"
-      "x that visibility. Then per band of the writers' agreement |mean|: the share of voxels\n"
-      "and the three biases.\n");
-  std::printf("%9s %9s %9s %9s %9s %9s |\n", "edge m", "voxels", "exact", "all", "facing", "area");
+      "x that visibility; groups = the voxelizer's faces (contracts/voxel_volumes.glsl): the\n"
+      "writers in six groups by the signed axis their normal leans along, each lit as a plane\n"
+      "with its mean normal and the visibility of its light-facing surfaces, weighted by its\n"
+      "share of the writers; by area = the same groups weighted by their area instead. Then per\n"
+      "band of the writers' agreement |mean|: the share of voxels and the five biases.\n");
+  std::printf("%9s %9s %9s %9s %9s %9s %9s %9s |\n", "edge m", "voxels", "exact", "all", "facing",
+              "area", "groups", "by area");
   for (int k = 0; k < sizes; ++k) {
     const double edge = finest * std::ldexp(1.0, k);
     std::unordered_map<uint64_t, VoxelSums> voxels;
@@ -206,12 +224,18 @@ int bench_voxel_light_command(const std::vector<std::string>& argv) {
       v.lit += area * std::max(0.0f, glm::dot(q.normal, l)) * q.visible;
       v.visible += area * q.visible;
       v.area_normal_sum += area * glm::dvec3(q.normal);
+      const int g = face_group(q.normal);
+      v.group_area[size_t(g)] += area;
       if (glm::dot(q.normal, l) > 0.0f) {
         v.facing_area += area;
         v.facing_visible += area * q.visible;
+        v.group_facing_area[size_t(g)] += area;
+        v.group_facing_visible[size_t(g)] += area * q.visible;
       }
       if (v.triangles.insert(q.triangle).second) {
         v.writer_normal_sum += glm::dvec3(q.normal);
+        v.group_normal_sum[size_t(g)] += glm::dvec3(q.normal);
+        v.group_writers[size_t(g)] += 1.0;
       }
     }
     // Bands of the writers' agreement (0.8 and 0.95: where the seventh round's facing test
@@ -227,6 +251,16 @@ int bench_voxel_light_command(const std::vector<std::string>& argv) {
       const double model = injected_cosine(mean, l) * visible;
       const double facing_model = injected_cosine(mean, l) * facing_visible;
       const double area_model = injected_cosine(v.area_normal_sum / v.area, l) * facing_visible;
+      double group_model = 0.0, group_area_model = 0.0;
+      for (size_t g = 0; g < 6; ++g) {
+        if (v.group_writers[g] == 0.0) continue;
+        const double group_visible =
+            v.group_facing_area[g] > 0.0 ? v.group_facing_visible[g] / v.group_facing_area[g] : 0.0;
+        const glm::dvec3 n = glm::normalize(v.group_normal_sum[g]);
+        const double lit = std::max(0.0, glm::dot(n, glm::dvec3(l))) * group_visible;
+        group_model += v.group_writers[g] / double(v.triangles.size()) * lit;
+        group_area_model += v.group_area[g] / v.area * lit;
+      }
       for (Totals* t :
            {&all, &band[std::upper_bound(bands + 1, bands + 4, agreement) - bands - 1]}) {
         ++t->voxels;
@@ -234,19 +268,23 @@ int bench_voxel_light_command(const std::vector<std::string>& argv) {
         t->model += model;
         t->facing_model += facing_model;
         t->area_model += area_model;
+        t->group_model += group_model;
+        t->group_area_model += group_area_model;
       }
     }
     auto bias = [](double model, double exact) {
       return exact > 0.0 ? 100.0 * (model / exact - 1.0) : 0.0;
     };
-    std::printf("%9.3f %9zu %9.4f %+8.1f%% %+8.1f%% %+8.1f%% |", edge, all.voxels,
+    std::printf("%9.3f %9zu %9.4f %+8.1f%% %+8.1f%% %+8.1f%% %+8.1f%% %+8.1f%% |", edge, all.voxels,
                 all.exact / double(all.voxels), bias(all.model, all.exact),
-                bias(all.facing_model, all.exact), bias(all.area_model, all.exact));
+                bias(all.facing_model, all.exact), bias(all.area_model, all.exact),
+                bias(all.group_model, all.exact), bias(all.group_area_model, all.exact));
     for (int b = 0; b < 4; ++b) {
-      std::printf(" [%.2f,%.2f) %4.1f%% %+6.1f%% %+6.1f%% %+6.1f%%", bands[b],
+      std::printf(" [%.2f,%.2f) %4.1f%% %+6.1f%% %+6.1f%% %+6.1f%% %+6.1f%% %+6.1f%%", bands[b],
                   std::min(bands[b + 1], 1.0), 100.0 * double(band[b].voxels) / double(all.voxels),
                   bias(band[b].model, band[b].exact), bias(band[b].facing_model, band[b].exact),
-                  bias(band[b].area_model, band[b].exact));
+                  bias(band[b].area_model, band[b].exact), bias(band[b].group_model, band[b].exact),
+                  bias(band[b].group_area_model, band[b].exact));
     }
     std::printf("\n");
   }

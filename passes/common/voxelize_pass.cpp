@@ -55,6 +55,7 @@ constexpr uint32_t kHdrWords = 9;
 constexpr uint32_t kHdrWordsWithEmission = 16;
 constexpr uint32_t kRgba8Words = 3;
 constexpr uint32_t kFrontWords = 6;  // stacked_surfaces = front: one word per facing
+constexpr uint32_t kFaceWords = 24;  // a faces output: area and normal sum per facing
 
 bool is_power_of_two(uint32_t v) {
   return v != 0 && (v & (v - 1)) == 0;
@@ -74,7 +75,8 @@ template <typename Declaration>
 uint32_t scratch_words_per_voxel(const Declaration& pass) {
   const uint32_t front = pass.choice("stacked_surfaces") == "front" ? kFrontWords : 0;
   if (pass.choice("strategy") == "average_rgba8") return kRgba8Words + front;
-  return (pass.has("emission") ? kHdrWordsWithEmission : kHdrWords) + front;
+  const uint32_t faces = pass.has("faces") ? kFaceWords : 0;
+  return (pass.has("emission") ? kHdrWordsWithEmission : kHdrWords) + faces + front;
 }
 
 // The clipmaps' size from parameters "resolution" and "levels", for a graph that leaves the
@@ -125,7 +127,7 @@ void validate_voxelize(graph::PassCheck& check) {
                                    std::to_string(resolution) +
                                    "; the clipmap needs a power of two of at least 8");
   }
-  graph::check_same_clipmap_layout(check, "albedo", {"normal", "emission"});
+  graph::check_same_clipmap_layout(check, "albedo", {"normal", "emission", "faces"});
   contracts::check_clipmap_info_size(check);
   const uint32_t stride = scratch_words_per_voxel(check);
   const graph::ResourceInfo& scratch = check.info("scratch");
@@ -153,6 +155,7 @@ class VoxelizePass final : public graph::Pass {
     levels_ = albedo.clipmap_levels;
     const std::string where = "pass '" + ctx.pass_name() + "' (common.voxelize): ";
     has_emission_ = ctx.has("emission");
+    has_faces_ = ctx.has("faces");
     rgba8_ = ctx.choice("strategy") == "average_rgba8";
     stride_ = scratch_words_per_voxel(ctx);
     capacity_voxels_ =
@@ -177,6 +180,7 @@ class VoxelizePass final : public graph::Pass {
     std::vector<gpu::ShaderDefine> defines = {{"VOXEL_CONSERVATIVE", std::to_string(conservative)}};
     if (rgba8_) defines.push_back({"VOXEL_STRATEGY_RGBA8", "1"});
     if (has_emission_) defines.push_back({"VOXEL_HAS_EMISSION", "1"});
+    if (has_faces_) defines.push_back({"VOXEL_FACES", "1"});
 
     gpu::GraphicsPipelineDesc desc;
     desc.name = ctx.pass_name();
@@ -211,6 +215,7 @@ class VoxelizePass final : public graph::Pass {
                                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                                                   {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
     if (has_emission_) resolve_bindings.push_back({3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    if (has_faces_) resolve_bindings.push_back({4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
     resolve_pipeline_.emplace(graph::make_pass_compute(ctx, "common/voxel_resolve.comp",
                                                        resolve_bindings, sizeof(VoxelResolvePush),
                                                        false, defines));
@@ -309,6 +314,7 @@ class VoxelizePass final : public graph::Pass {
           ctx.barrier_within_pass("albedo");
           ctx.barrier_within_pass("normal");
           if (has_emission_) ctx.barrier_within_pass("emission");
+          if (has_faces_) ctx.barrier_within_pass("faces");
         }
       }
     }
@@ -485,6 +491,9 @@ class VoxelizePass final : public graph::Pass {
       writer.storage_image(3, ctx.resource("emission").image->view(0),
                            ctx.resource("emission").layout);
     }
+    if (has_faces_) {
+      writer.storage_image(4, ctx.resource("faces").image->view(0), ctx.resource("faces").layout);
+    }
     writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolve_pipeline_->layout());
     VoxelResolvePush push{};
     push.box_min = glm::ivec4(chunk.min, chunk.level);
@@ -500,7 +509,7 @@ class VoxelizePass final : public graph::Pass {
   std::optional<gpu::GraphicsPipeline> draw_pipeline_, front_pipeline_;
   std::optional<gpu::ComputePipeline> resolve_pipeline_, clear_pipeline_;
   uint32_t resolution_ = 0, levels_ = 0, stride_ = kHdrWords;
-  bool rgba8_ = false, has_emission_ = false;
+  bool rgba8_ = false, has_emission_ = false, has_faces_ = false;
   int64_t capacity_voxels_ = 0;
 
   bool initialized_ = false;
@@ -555,6 +564,17 @@ void register_voxelize(graph::Registry& registry) {
        {contracts::kVoxelEmissionFormat},
        true,
        "rgb: emitted radiance (HDR)"},
+      {"faces",
+       graph::kinds(ResourceKind::Clipmap),
+       Access::StorageReadWrite,
+       graph::kStageCompute,
+       {contracts::kVoxelFacesFormat},
+       true,
+       "the surfaces grouped by the signed axis their normal leans along: per group the mean "
+       "normal's direction and the share of the voxel's surface area "
+       "(contracts/voxel_volumes.glsl), so injection lights each surface of a voxel with its "
+       "own normal; all zero with average_rgba8, which keeps no per-facing sums (readers then "
+       "light the voxel as one plane)"},
       {"scratch",
        graph::kinds(ResourceKind::Buffer),
        Access::StorageReadWrite,
@@ -562,8 +582,8 @@ void register_voxelize(graph::Registry& registry) {
        {},
        false,
        "accumulation records (64 bytes per voxel with emission, 36 without, 12 for "
-       "average_rgba8, 24 more with stacked_surfaces = front); R^3 records voxelize a level in "
-       "one go, fewer split it",
+       "average_rgba8, 96 more with faces, 24 more with stacked_surfaces = front); R^3 records "
+       "voxelize a level in one go, fewer split it",
        true},
   };
   info.params = {
@@ -641,7 +661,7 @@ void register_voxelize(graph::Registry& registry) {
     size.bytes = contracts::kVoxelClipmapInfoBytes;
     return size;
   });
-  for (const char* volume : {"albedo", "normal", "emission"}) {
+  for (const char* volume : {"albedo", "normal", "emission", "faces"}) {
     graph::set_size_rule(info, volume, clipmap_size);
   }
   graph::set_size_rule(info, "scratch", scratch_size);

@@ -15,6 +15,7 @@
 #include "engine/graph/pass.hpp"
 #include "passes/contracts/shadow_data.hpp"
 #include "passes/contracts/voxel_clipmap.hpp"
+#include "passes/contracts/voxel_volumes.hpp"
 #include "passes/dvs/dvs_pipeline.hpp"
 #include "passes/dvs/passes.hpp"
 
@@ -38,6 +39,7 @@ class VoxelLightingPass final : public graph::Pass {
     has_emission_ = ctx.has("emission");
     has_shadow_maps_ = ctx.has("shadow_maps") && ctx.has("shadow_matrices");
     has_direct_ = ctx.has("direct");
+    has_faces_ = ctx.has("faces");
     std::vector<gpu::Binding> bindings = {
         {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
@@ -50,11 +52,13 @@ class VoxelLightingPass final : public graph::Pass {
       bindings.push_back({5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0});
     }
     if (has_direct_) bindings.push_back({7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
+    if (has_faces_) bindings.push_back({8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
     pipeline_.emplace(graph::make_pass_compute(ctx, "dvs/voxel_lighting.comp", bindings,
                                                sizeof(LightingPush), true,
                                                {{"HAS_EMISSION", has_emission_ ? "1" : "0"},
                                                 {"HAS_SHADOW_MAPS", has_shadow_maps_ ? "1" : "0"},
-                                                {"HAS_DIRECT_COPY", has_direct_ ? "1" : "0"}}));
+                                                {"HAS_DIRECT_COPY", has_direct_ ? "1" : "0"},
+                                                {"HAS_FACES", has_faces_ ? "1" : "0"}}));
     inputs_.forget();
   }
 
@@ -82,6 +86,10 @@ class VoxelLightingPass final : public graph::Pass {
     if (has_emission_) {
       const graph::BoundResource& emission = ctx.resource("emission");
       writer.sampled_image(3, emission.view, emission.layout, nearest);
+    }
+    if (has_faces_) {
+      const graph::BoundResource& faces = ctx.resource("faces");
+      writer.sampled_image(8, faces.view, faces.layout, nearest);
     }
     if (has_direct_) {
       const graph::BoundResource& direct = ctx.resource("direct");
@@ -115,14 +123,16 @@ class VoxelLightingPass final : public graph::Pass {
   bool has_emission_ = false;
   bool has_shadow_maps_ = false;
   bool has_direct_ = false;
+  bool has_faces_ = false;
   graph::InputVersions inputs_{
-      {"clipmap_info", "albedo", "normal", "emission", "shadow_maps", "shadow_matrices"}};
+      {"clipmap_info", "albedo", "normal", "emission", "faces", "shadow_maps", "shadow_matrices"}};
   std::optional<gpu::ComputePipeline> pipeline_;
 };
 
 void validate_voxel_lighting(graph::PassCheck& check) {
   contracts::check_clipmap_info_size(check);
-  graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission", "direct"});
+  graph::check_same_clipmap_layout(check, "radiance",
+                                   {"albedo", "normal", "emission", "direct", "faces"});
 }
 
 }  // namespace
@@ -138,6 +148,12 @@ void register_voxel_lighting(graph::Registry& registry) {
       clipmap_input("albedo", "voxel albedo (rgb) and opacity (a)"),
       clipmap_input("normal", "voxel averaged normal (xyz), occupancy (w)"),
       clipmap_input("emission", "voxel emitted radiance; unbound: none", true),
+      graph::sampled_clipmap_input("faces",
+                                   "the voxel's surfaces grouped by facing "
+                                   "(contracts/voxel_volumes.glsl); each group is lit with its "
+                                   "own normal, weighted by its area; unbound: the voxel is lit "
+                                   "as one plane",
+                                   true, {contracts::kVoxelFacesFormat}),
       contracts::shadow_maps_input("from common.shadow_maps (occlusion = shadow_map)"),
       contracts::shadow_matrices_input("from common.shadow_maps (occlusion = shadow_map)"),
   };

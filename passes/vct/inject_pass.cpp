@@ -1,6 +1,7 @@
 // vct.inject: direct light into the radiance clipmap. Each occupied voxel gets the outgoing
 // Lambert radiance albedo/pi x sum(light irradiance x cos x shadow-map visibility) plus its
-// emission, rgba16f and sanitized (shaders/vct/inject.comp states the rules). The pass skips
+// emission, rgba16f and sanitized (shaders/vct/inject.comp states the rules); with the
+// voxelizer's faces, per way its surfaces face, weighted by their area. The pass skips
 // when none of its inputs was rewritten and the lights did not change.
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "engine/graph/pass.hpp"
 #include "passes/contracts/shadow_data.hpp"
 #include "passes/contracts/voxel_clipmap.hpp"
+#include "passes/contracts/voxel_volumes.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -38,18 +40,22 @@ class InjectPass final : public graph::Pass {
   void setup(graph::PassContext& ctx) override {
     has_shadows_ = ctx.has("shadow_maps") && ctx.has("shadow_matrices");
     has_emission_ = ctx.has("emission");
+    has_faces_ = ctx.has("faces");
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
                                           {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
                                           {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0}};
     if (has_emission_) bindings.push_back({3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+    if (has_faces_) bindings.push_back({7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
     if (has_shadows_) {
       bindings.push_back({4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
       bindings.push_back({5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0});
     }
-    pipeline_.emplace(graph::make_pass_compute(
-        ctx, "vct/inject.comp", bindings, sizeof(InjectPush), true,
-        {{"HAS_SHADOWS", has_shadows_ ? "1" : "0"}, {"HAS_EMISSION", has_emission_ ? "1" : "0"}}));
+    pipeline_.emplace(graph::make_pass_compute(ctx, "vct/inject.comp", bindings, sizeof(InjectPush),
+                                               true,
+                                               {{"HAS_SHADOWS", has_shadows_ ? "1" : "0"},
+                                                {"HAS_EMISSION", has_emission_ ? "1" : "0"},
+                                                {"HAS_FACES", has_faces_ ? "1" : "0"}}));
     versions_.forget();
   }
 
@@ -75,6 +81,10 @@ class InjectPass final : public graph::Pass {
       const graph::BoundResource& emission = ctx.resource("emission");
       writer.sampled_image(3, emission.view, emission.layout, nearest);
     }
+    if (has_faces_) {
+      const graph::BoundResource& faces = ctx.resource("faces");
+      writer.sampled_image(7, faces.view, faces.layout, nearest);
+    }
     InjectPush push{0, static_cast<float>(ctx.number("normal_offset")),
                     ctx.flag("shadows") ? 1u : 0u, 0.0f};
     if (has_shadows_) {
@@ -93,9 +103,10 @@ class InjectPass final : public graph::Pass {
  private:
   bool has_shadows_ = false;
   bool has_emission_ = false;
+  bool has_faces_ = false;
   std::optional<gpu::ComputePipeline> pipeline_;
   graph::InputVersions versions_{
-      {"clipmap_info", "albedo", "normal", "emission", "shadow_maps", "shadow_matrices"}};
+      {"clipmap_info", "albedo", "normal", "emission", "faces", "shadow_maps", "shadow_matrices"}};
 };
 
 }  // namespace
@@ -114,6 +125,12 @@ void register_inject(graph::Registry& registry) {
                                    false, kFloatRgba),
       graph::sampled_clipmap_input("emission", "voxel emitted radiance (rgb); unbound: none", true,
                                    kFloatRgba),
+      graph::sampled_clipmap_input("faces",
+                                   "the voxel's surfaces grouped by facing "
+                                   "(contracts/voxel_volumes.glsl); each group is lit with its "
+                                   "own normal, weighted by its area; unbound: the voxel is lit "
+                                   "as one plane",
+                                   true, {contracts::kVoxelFacesFormat}),
       contracts::shadow_maps_input("from common.shadow_maps; unbound: lights are unshadowed"),
       contracts::shadow_matrices_input("from common.shadow_maps"),
   };
@@ -140,7 +157,7 @@ void register_inject(graph::Registry& registry) {
   info.may_skip = true;
   info.validate = [](graph::PassCheck& check) {
     contracts::check_clipmap_info_size(check);
-    graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission"});
+    graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission", "faces"});
   };
   registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });
 }

@@ -85,6 +85,24 @@ bool voxel_front_visible(uint key, uint front) {
   return (key >> 20) + VOXEL_FRONT_TOLERANCE >= (front >> 20);
 }
 
+// Faces (the optional faces volume, contracts/voxel_volumes.glsl): per group of writers whose
+// normal leans furthest along one signed axis (voxel_front_axis), the sum of their areas in
+// the voxel (voxel faces) x 2^16 and of their unit normals x 4096 (two's complement): words 4g
+// (area) and 4g + 1..3 (xyz) of the 24 that follow the strategy's words (before the front
+// words). A writer's area is at most sqrt(3) (a triangle across the voxel's diagonal), so the
+// area sum holds some 37 000 writers; the normal's overflow is as for the normal.
+const uint VOXEL_FACE_WORDS = 24u;
+const float VOXEL_FACE_AREA_SCALE = 65536.0;
+
+void voxel_accumulate_face(uint face_base, vec3 normal, float area) {
+  uint word = face_base + 4u * voxel_front_axis(normal);
+  ivec3 n = ivec3(round(clamp(normal, -1.0, 1.0) * VOXEL_UNIT_SCALE));
+  atomicAdd(voxel_scratch[word], uint(round(clamp(area, 0.0, 2.0) * VOXEL_FACE_AREA_SCALE)));
+  atomicAdd(voxel_scratch[word + 1u], uint(n.x));
+  atomicAdd(voxel_scratch[word + 2u], uint(n.y));
+  atomicAdd(voxel_scratch[word + 3u], uint(n.z));
+}
+
 // Adds a non-negative fixed-point value below 2^40 (value = x * 2^24, x <= 65504) to the
 // 64-bit sum in words (low, low + 1); a carry out of the low word goes into the high word.
 void voxel_add_fixed64(uint low_word, float x) {

@@ -15,6 +15,10 @@ layout(set = 0, binding = 2, rgba16f) uniform writeonly image3D normal_volume;
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image3D emission_volume;
 #endif
 
+#ifdef VOXEL_FACES
+layout(set = 0, binding = 4, rgba32ui) uniform writeonly uimage3D faces_volume;
+#endif
+
 layout(push_constant) uniform VoxelResolvePush {
   ivec4 box_min;  // xyz: window voxels; w: level
   ivec4 box_max;  // xyz: exclusive; w: R
@@ -32,6 +36,7 @@ void main() {
   uint base = uint((local.z * extent.y + local.y) * extent.x + local.x) * stride;
 
   vec4 albedo = vec4(0.0), normal = vec4(0.0), emission = vec4(0.0);
+  uvec4 faces = uvec4(0u);
 #ifdef VOXEL_STRATEGY_RGBA8
   vec4 packed_albedo = unpackUnorm4x8(voxel_scratch[base]);
   if (packed_albedo.a > 0.0) {
@@ -53,6 +58,30 @@ void main() {
     float len2 = dot(n, n);
     float plane_offset = float(int(voxel_scratch[base + 8u])) * scale;
     normal = vec4(len2 > 1.0 ? n * inversesqrt(len2) : n, voxel_encode_plane_offset(plane_offset));
+#ifdef VOXEL_FACES
+#ifdef VOXEL_HAS_EMISSION
+    uint face_base = base + VOXEL_HDR_WORDS_WITH_EMISSION;
+#else
+    uint face_base = base + VOXEL_HDR_WORDS;
+#endif
+    // Shares of the surfaces' area in the voxel.
+    float total_area = 0.0;
+    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+      total_area += float(voxel_scratch[face_base + 4u * uint(g)]);
+    }
+    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+      uint area = voxel_scratch[face_base + 4u * uint(g)];
+      if (area == 0u) continue;
+      uint w = face_base + 4u * uint(g);
+      vec3 sum = vec3(int(voxel_scratch[w + 1u]), int(voxel_scratch[w + 2u]),
+                      int(voxel_scratch[w + 3u]));
+      // The sum leans along the group's axis by construction, so it is never zero.
+      vec3 axis = vec3(0.0);
+      axis[g >> 1] = (g & 1) == 0 ? 1.0 : -1.0;
+      vec3 direction = dot(sum, sum) > 0.0 ? normalize(sum) : axis;
+      faces = voxel_pack_face(faces, g, direction, float(area) / total_area);
+    }
+#endif
 #ifdef VOXEL_HAS_EMISSION
     // The uncovered part of an emitter's edge voxel emits nothing: divided by the sum of the
     // coverage weights or 1, whichever is larger (voxel_accumulate.glsl).
@@ -66,6 +95,9 @@ void main() {
   albedo = clamp(albedo, 0.0, 1.0);
   imageStore(albedo_volume, texel, albedo);
   imageStore(normal_volume, texel, normal);
+#ifdef VOXEL_FACES
+  imageStore(faces_volume, texel, faces);
+#endif
 #ifdef VOXEL_HAS_EMISSION
   imageStore(emission_volume, texel, vec4(sanitize_radiance(emission.rgb), 0.0));
 #endif

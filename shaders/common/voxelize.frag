@@ -88,7 +88,9 @@ float column_coverage(int axis, vec3 corner) {
   return clamp(0.5 * abs(twice_area), 0.0, 1.0);
 }
 
-void store(ivec3 voxel) {
+// column_share: 1 / the number of voxels of its column this fragment writes (the part of the
+// triangle's area in the column each of them gets, for the faces' area weights).
+void store(ivec3 voxel, float column_share) {
   // Material at the voxel centre projected on the triangle, barycentrics clamped inside it.
   vec3 q = vec3(voxel) + 0.5 - tri_v0;
   q -= tri_plane.xyz * dot(tri_plane.xyz, q);
@@ -145,7 +147,7 @@ void store(ivec3 voxel) {
 #else
   // The triangle's plane relative to this voxel's centre, along the shading normal (voxels).
   float plane_offset = -dot(tri_plane.xyz, vec3(voxel) + 0.5 - tri_v0) * dot(n, tri_plane.xyz);
-#ifdef VOXEL_HAS_EMISSION
+#if defined(VOXEL_HAS_EMISSION) || defined(VOXEL_FACES)
   vec3 a = abs(face);
   int coverage_axis = (a.z >= a.x && a.z >= a.y) ? 2 : (a.x >= a.y ? 0 : 1);
   float coverage = column_coverage(coverage_axis, corner);
@@ -153,6 +155,17 @@ void store(ivec3 voxel) {
   float coverage = 1.0;  // weighs the emission only
 #endif
   voxel_accumulate_hdr(base, coverage, albedo, m.base_color.a, n, plane_offset, emission);
+#ifdef VOXEL_FACES
+  // The triangle's area in this voxel (voxel faces): its area in the column, the covered part
+  // of the column's cross-section over the cosine to the column's axis, shared out among the
+  // voxels of the column it writes.
+  float area = coverage / max(a[coverage_axis], 1e-3) * column_share;
+#ifdef VOXEL_HAS_EMISSION
+  voxel_accumulate_face(base + VOXEL_HDR_WORDS_WITH_EMISSION, n, area);
+#else
+  voxel_accumulate_face(base + VOXEL_HDR_WORDS, n, area);
+#endif
+#endif
 #endif
 }
 
@@ -172,16 +185,21 @@ void main() {
   float center = tri_v0[axis] - (n[u] * cu + n[v] * cv) / n[axis];
 #if VOXEL_CONSERVATIVE == 0
   voxel[axis] = int(floor(center));
-  if (voxel[axis] >= box_min[axis] && voxel[axis] < box_max[axis]) store(voxel);
+  if (voxel[axis] >= box_min[axis] && voxel[axis] < box_max[axis]) store(voxel, 1.0);
 #else
   float half_range = 0.5 * (abs(n[u]) + abs(n[v])) / abs(n[axis]);
   float lo = max(center - half_range, tri_aabb_min[axis]) - VOXEL_OVERLAP_EPSILON;
   float hi = min(center + half_range, tri_aabb_max[axis]) + VOXEL_OVERLAP_EPSILON;
   int first = max(int(floor(lo)), box_min[axis]);
   int last = min(min(int(floor(hi)), box_max[axis] - 1), first + 3);
+  int written = 0;
   for (int k = first; k <= last; ++k) {
     voxel[axis] = k;
-    if (overlaps(voxel)) store(voxel);
+    if (overlaps(voxel)) ++written;
+  }
+  for (int k = first; k <= last; ++k) {
+    voxel[axis] = k;
+    if (overlaps(voxel)) store(voxel, 1.0 / float(written));
   }
 #endif
 }

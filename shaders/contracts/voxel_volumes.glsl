@@ -10,6 +10,15 @@
 //             empty one), d the signed distance in voxels from the voxel centre to the
 //             average surface plane along that normal, |d| <= 1
 //   emission  rgba16f (optional): rgb emitted radiance, finite and below the half maximum
+//   faces     rgba32ui (optional): the voxel's writers in six groups by the signed axis their
+//             normal leans furthest along (0..5 = +X, -X, +Y, -Y, +Z, -Z), per group the
+//             direction of its mean normal (octahedral, 8+8 bits of 254 steps: words 0-2,
+//             group g in the low (even g) or high half of word g / 2) and its share of the
+//             surfaces' area in the voxel (5 bits, 0..31 / 31, at least 1 for a group that
+//             has any: word 3, bits 5g..5g+4). A voxel that holds a floor and a wall, or the
+//             sides of a column, is lit as the surfaces it holds rather than as one plane with
+//             their mean normal (docs/voxelization.md). Their surfaces lie at the normal
+//             texel's plane offset d along each group's normal. All zero for an empty voxel.
 //
 // Lighting is evaluated on the surface (centre + d * n), not at the centre: near a light the
 // centre can be half a voxel closer to it than any surface in the voxel, and 1/r^2 makes that
@@ -44,6 +53,45 @@ float voxel_front_share(vec3 mean_normal, vec3 v) {
   float front = voxel_mean_clamped_cosine(len, c);
   float back = voxel_mean_clamped_cosine(len, -c);
   return front + back > 1e-6 ? front / (front + back) : 0.5;
+}
+
+const int VOXEL_FACE_GROUPS = 6;
+const float VOXEL_FACE_SHARE_STEPS = 31.0;
+
+// Octahedral map of a unit vector to [-1, 1]^2 and back.
+vec2 voxel_octahedral_encode(vec3 n) {
+  n /= max(abs(n.x) + abs(n.y) + abs(n.z), 1e-20);
+  vec2 e = n.xy;
+  if (n.z < 0.0) e = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return e;
+}
+vec3 voxel_octahedral_decode(vec2 e) {
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  float t = max(-n.z, 0.0);
+  n.x += n.x >= 0.0 ? -t : t;
+  n.y += n.y >= 0.0 ? -t : t;
+  return normalize(n);
+}
+
+// Adds group g (unit mean-normal direction, area share in (0, 1]) to a faces texel.
+uvec4 voxel_pack_face(uvec4 faces, int g, vec3 direction, float share) {
+  // 254 steps, so that 0 (an axis) is exact.
+  uvec2 e = uvec2(round(clamp(voxel_octahedral_encode(direction) * 0.5 + 0.5, 0.0, 1.0) * 254.0));
+  uint bits = e.x | (e.y << 8);
+  faces[g >> 1] |= bits << (16 * (g & 1));
+  uint steps = uint(clamp(round(share * VOXEL_FACE_SHARE_STEPS), 1.0, VOXEL_FACE_SHARE_STEPS));
+  faces.w |= steps << (5 * g);
+  return faces;
+}
+
+// Area share of group g (0: none); the shares of a texel add up to about 1.
+float voxel_face_share(uvec4 faces, int g) {
+  return float((faces.w >> (5 * g)) & 31u) / VOXEL_FACE_SHARE_STEPS;
+}
+vec3 voxel_face_normal(uvec4 faces, int g) {
+  uint bits = (faces[g >> 1] >> (16 * (g & 1))) & 0xFFFFu;
+  vec2 e = vec2(float(bits & 0xFFu), float(bits >> 8)) / 254.0 * 2.0 - 1.0;
+  return voxel_octahedral_decode(e);
 }
 
 float voxel_encode_plane_offset(float d) {

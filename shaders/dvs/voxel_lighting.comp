@@ -3,7 +3,10 @@
 // Deferred voxel shading, direct part (Villegas §2): the outgoing diffuse radiance of every
 // voxel of the clipmap under the scene's punctual lights, with the normal-weighted attenuation
 // of §2.1, occlusion from the shadow maps or from soft voxel ray casting (§2.2.1), plus the
-// voxel's emission (§2.3). One invocation per texel of the stacked clipmap image.
+// voxel's emission (§2.3). One invocation per texel of the stacked clipmap image. With the
+// faces volume (HAS_FACES) each group of the voxel's writers (the surfaces facing along one
+// signed axis, contracts/voxel_volumes.glsl) is lit on its own, with its own normal, surface
+// point and occlusion, and the voxel holds their mean weighted by their share of its area.
 #include "contracts/voxel_clipmap.glsl"
 #include "lib/common.glsl"
 #include "contracts/voxel_volumes.glsl"
@@ -19,6 +22,9 @@
 #endif
 #ifndef HAS_DIRECT_COPY
 #define HAS_DIRECT_COPY 0
+#endif
+#ifndef HAS_FACES
+#define HAS_FACES 0
 #endif
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
@@ -36,6 +42,9 @@ layout(set = 0, binding = 5, std430) readonly buffer ShadowBlock { ShadowLight s
 layout(set = 0, binding = 6, rgba16f) writeonly uniform image3D out_radiance;
 #if HAS_DIRECT_COPY
 layout(set = 0, binding = 7, rgba16f) writeonly uniform image3D out_direct;
+#endif
+#if HAS_FACES
+layout(set = 0, binding = 8) uniform usampler3D voxel_faces;
 #endif
 
 const uint OCCLUSION_NONE = 0u;
@@ -75,6 +84,58 @@ float voxel_ray_visibility(vec3 origin, vec3 dir, float max_t, float receiver_si
 }
 
 
+// Irradiance at the point p (anchor-relative) of a surface with normal `normal` (the voxel's
+// averaged normal, any length, or one group's unit normal) in a voxel of edge `size`.
+vec3 surface_irradiance(vec3 p, vec3 normal, float size) {
+  vec3 n = safe_normalize(normal, vec3(0.0));
+  vec3 irradiance = vec3(0.0);
+  uint light_count = scene_light_count();
+  for (uint i = 0u; i < light_count; ++i) {
+    SceneLight light = scene_lights[i];
+    vec3 l;
+    float attenuation = 1.0;
+    float max_t = 3.4e38;
+    float distance_to_light = 0.0;
+    if (light.type == SCENE_LIGHT_DIRECTIONAL) {
+      l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
+    } else {
+      vec3 to_light = voxel_relative(light.position) - p;
+      // A light inside the voxel (on a surface, inside geometry) lights it as if it were
+      // half a voxel away: the voxel's surfaces are at least that far on average, and 1/d^2
+      // stays finite.
+      float d2 = max(dot(to_light, to_light), 0.25 * size * size);
+      float d = sqrt(d2);
+      l = safe_normalize(to_light, vec3(0.0, 1.0, 0.0));
+      attenuation = scene_light_falloff(light, d, -l) / d2;
+      max_t = d - 0.5 * size;
+      distance_to_light = d;
+    }
+    float cosine = dvs_normal_weighted_cosine(normal, l);
+    if (attenuation <= 0.0 || cosine <= 0.0) continue;
+    float visibility = 1.0;
+    // Rays and lookups start off the surface: along the normal, or towards the light where
+    // the faces cancelled.
+    vec3 offset_dir = dot(n, n) > 0.0 ? n : l;
+    if (pc.occlusion == OCCLUSION_VOXEL_RAYS) {
+      vec3 origin = p + offset_dir * (pc.shadow_bias * size);
+      visibility = voxel_ray_visibility(origin, l, max_t, size);
+    }
+#if HAS_SHADOW_MAPS
+    if (pc.occlusion == OCCLUSION_SHADOW_MAP && i < pc.shadow_slots) {
+      // Over the voxel's surface patch, each point off the surface by two shadow-map texels
+      // (contracts/shadow_data.glsl); the voxel-ray start offset would look past occluders
+      // close in front of the surface.
+      visibility =
+          shadow_voxel_visibility(shadow_maps, shadow_lights[i], float(i * 6u),
+                                  p + voxel_clipmap.anchor.xyz, n, offset_dir, size, 0.0,
+                                  distance_to_light);
+    }
+#endif
+    irradiance += light.radiance * (attenuation * cosine * visibility);
+  }
+  return irradiance;
+}
+
 void main() {
   ivec3 texel = ivec3(gl_GlobalInvocationID);
   if (any(greaterThanEqual(uvec3(texel), pc.size))) return;
@@ -88,53 +149,27 @@ void main() {
   bool occupied = albedo.a > 0.0 || normal.w > 0.0;
   if (occupied && voxel_level_valid(level)) {
     float size = voxel_size(level);
-    vec3 n = safe_normalize(normal.xyz, vec3(0.0));
     // Lit on its average surface plane, not at its centre (contracts/voxel_volumes.glsl).
-    vec3 p = dvs_texel_center(texel, level) + n * (voxel_plane_offset(normal) * size);
+    vec3 center = dvs_texel_center(texel, level);
+    float offset = voxel_plane_offset(normal) * size;
+    // Each way the voxel's surfaces face lit as a plane of its own, weighted by its area
+    // share; or the voxel as one plane.
     vec3 irradiance = vec3(0.0);
-    uint light_count = scene_light_count();
-    for (uint i = 0u; i < light_count; ++i) {
-      SceneLight light = scene_lights[i];
-      vec3 l;
-      float attenuation = 1.0;
-      float max_t = 3.4e38;
-      float distance_to_light = 0.0;
-      if (light.type == SCENE_LIGHT_DIRECTIONAL) {
-        l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
-      } else {
-        vec3 to_light = voxel_relative(light.position) - p;
-        // A light inside the voxel (on a surface, inside geometry) lights it as if it were
-        // half a voxel away: the voxel's surfaces are at least that far on average, and 1/d^2
-        // stays finite.
-        float d2 = max(dot(to_light, to_light), 0.25 * size * size);
-        float d = sqrt(d2);
-        l = safe_normalize(to_light, vec3(0.0, 1.0, 0.0));
-        attenuation = scene_light_falloff(light, d, -l) / d2;
-        max_t = d - 0.5 * size;
-        distance_to_light = d;
-      }
-      float cosine = dvs_normal_weighted_cosine(normal.xyz, l);
-      if (attenuation <= 0.0 || cosine <= 0.0) continue;
-      float visibility = 1.0;
-      // Rays and lookups start off the surface: along the normal, or towards the light where
-      // the faces cancelled.
-      vec3 offset_dir = dot(n, n) > 0.0 ? n : l;
-      if (pc.occlusion == OCCLUSION_VOXEL_RAYS) {
-        vec3 origin = p + offset_dir * (pc.shadow_bias * size);
-        visibility = voxel_ray_visibility(origin, l, max_t, size);
-      }
-#if HAS_SHADOW_MAPS
-      if (pc.occlusion == OCCLUSION_SHADOW_MAP && i < pc.shadow_slots) {
-        // Over the voxel's surface patch, each point off the surface by two shadow-map texels
-        // (contracts/shadow_data.glsl); the voxel-ray start offset would look past occluders
-        // close in front of the surface.
-        visibility =
-            shadow_voxel_visibility(shadow_maps, shadow_lights[i], float(i * 6u),
-                                    p + voxel_clipmap.anchor.xyz, n, offset_dir, size, 0.0,
-                                    distance_to_light);
-      }
+    float shares = 0.0;
+#if HAS_FACES
+    uvec4 faces = texelFetch(voxel_faces, texel, 0);
+    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+      float share = voxel_face_share(faces, g);
+      if (share <= 0.0) continue;
+      vec3 face_normal = voxel_face_normal(faces, g);
+      irradiance += share * surface_irradiance(center + face_normal * offset, face_normal, size);
+      shares += share;
+    }
+    if (shares > 0.0) irradiance /= shares;
 #endif
-      irradiance += light.radiance * (attenuation * cosine * visibility);
+    if (shares <= 0.0) {  // no faces volume, or a voxel written without one
+      vec3 n = safe_normalize(normal.xyz, vec3(0.0));
+      irradiance = surface_irradiance(center + n * offset, normal.xyz, size);
     }
     radiance += albedo.rgb * (1.0 / 3.14159265358979) * irradiance;
   }

@@ -9,7 +9,12 @@
 // voxel whose normal is missing or whose faces cancelled (|n| < VOXEL_NORMAL_MIN_LENGTH) is
 // treated as facing each light (cos = 1): a thin wall lit from one side glows rather than
 // going black, and the shadow map still decides whether light reaches it. Output is
-// sanitized HDR.
+// sanitized HDR. With the faces volume (HAS_FACES) each group of the voxel's writers
+// (contracts/voxel_volumes.glsl: the surfaces that face along one signed axis) is lit as a
+// plane of its own, with its normal, its surface point and its own visibility, and the voxel
+// holds their mean weighted by their share of its surfaces' area: a voxel holding a sunlit
+// floor and a wall turned away is not lit as one plane with their mean normal
+// (docs/voxelization.md).
 #include "lib/common.glsl"
 #include "contracts/voxel_volumes.glsl"
 #include "lib/scene.glsl"
@@ -23,6 +28,9 @@
 #endif
 #ifndef HAS_EMISSION
 #define HAS_EMISSION 0
+#endif
+#ifndef HAS_FACES
+#define HAS_FACES 0
 #endif
 
 const float INJECT_PI = 3.14159265358979323846;
@@ -39,6 +47,9 @@ layout(set = 0, binding = 4) uniform sampler2DArrayShadow shadow_maps;
 layout(set = 0, binding = 5, std430) readonly buffer ShadowBlock { ShadowLight shadow_lights[]; };
 #endif
 layout(set = 0, binding = 6, rgba16f) writeonly uniform image3D out_radiance;
+#if HAS_FACES
+layout(set = 0, binding = 7) uniform usampler3D voxel_faces;
+#endif
 
 layout(push_constant) uniform Push {
   uint shadow_slots;    // lights with shadow data
@@ -56,6 +67,43 @@ float shadow_visibility(uint index, vec3 p, vec3 plane_normal, vec3 facing, floa
                                  plane_normal, facing, size, offset, distance_to_light);
 }
 #endif
+
+// Irradiance at the surface point p (anchor-relative + anchor = world) of a plane with unit
+// normal n (has_normal false: a voxel whose faces cancelled, lit as if facing each light).
+vec3 surface_irradiance(vec3 p, vec3 n, bool has_normal, float size) {
+  vec3 irradiance = vec3(0.0);
+  uint light_count = scene_light_count();
+  for (uint i = 0u; i < light_count; ++i) {
+    SceneLight light = scene_lights[i];
+    vec3 l;
+    float attenuation = 1.0;
+    float distance_to_light = 0.0;  // unused by orthographic (directional) maps
+    if (light.type == SCENE_LIGHT_DIRECTIONAL) {
+      l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
+    } else {
+      vec3 to_light = light.position - p;
+      // A light inside or next to the voxel must not give 1/0: clamp at a quarter voxel.
+      float d2 = max(dot(to_light, to_light), max(0.0625 * size * size, 1e-8));
+      float d = sqrt(d2);
+      distance_to_light = d;
+      l = to_light / d;
+      attenuation = scene_light_falloff(light, d, -l) / d2;
+    }
+    float cos_theta = has_normal ? dot(n, l) : 1.0;
+    if (attenuation <= 0.0 || cos_theta <= 0.0) continue;
+    float visibility = 1.0;
+#if HAS_SHADOWS
+    // Look up from just in front of the surface: p lies on the voxel's average surface plane,
+    // so a small offset suffices, and a larger one would look past occluders lying close in
+    // front of the surface (a lamp's shade just under a ceiling).
+    vec3 facing = has_normal ? n : l;
+    visibility = shadow_visibility(i, p, n, facing, size, pc.normal_offset * size,
+                                   distance_to_light);
+#endif
+    irradiance += light.radiance * (attenuation * cos_theta * visibility);
+  }
+  return irradiance;
+}
 
 void main() {
   int r = voxel_resolution();
@@ -90,40 +138,27 @@ void main() {
   // The voxel's surface: its centre moved onto the average surface plane
   // (contracts/voxel_volumes.glsl), world space (anchor-relative arithmetic first for precision).
   float size = voxel_size(level);
-  vec3 relative = voxel_level_min(level) + (vec3(window) + 0.5) * size;
-  if (has_normal) relative += n * (voxel_plane_offset(normal_occupied) * size);
-  vec3 p = relative + voxel_clipmap.anchor.xyz;
-
+  vec3 center = voxel_level_min(level) + (vec3(window) + 0.5) * size;
+  float offset = voxel_plane_offset(normal_occupied) * size;
+  // Each way the voxel's surfaces face lit as a plane of its own, weighted by its area share;
+  // or the voxel as one plane.
   vec3 irradiance = vec3(0.0);
-  uint light_count = scene_light_count();
-  for (uint i = 0u; i < light_count; ++i) {
-    SceneLight light = scene_lights[i];
-    vec3 l;
-    float attenuation = 1.0;
-    float distance_to_light = 0.0;  // unused by orthographic (directional) maps
-    if (light.type == SCENE_LIGHT_DIRECTIONAL) {
-      l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
-    } else {
-      vec3 to_light = light.position - p;
-      // A light inside or next to the voxel must not give 1/0: clamp at a quarter voxel.
-      float d2 = max(dot(to_light, to_light), max(0.0625 * size * size, 1e-8));
-      float d = sqrt(d2);
-      distance_to_light = d;
-      l = to_light / d;
-      attenuation = scene_light_falloff(light, d, -l) / d2;
-    }
-    float cos_theta = has_normal ? dot(n, l) : 1.0;
-    if (attenuation <= 0.0 || cos_theta <= 0.0) continue;
-    float visibility = 1.0;
-#if HAS_SHADOWS
-    // Look up from just in front of the surface: p lies on the voxel's average surface plane,
-    // so a small offset suffices, and a larger one would look past occluders lying close in
-    // front of the surface (a lamp's shade just under a ceiling).
-    vec3 facing = has_normal ? n : l;
-    visibility = shadow_visibility(i, p, n, facing, size, pc.normal_offset * size,
-                                   distance_to_light);
+  float shares = 0.0;
+#if HAS_FACES
+  uvec4 faces = texelFetch(voxel_faces, texel, 0);
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    float share = voxel_face_share(faces, g);
+    if (share <= 0.0) continue;
+    vec3 face_normal = voxel_face_normal(faces, g);
+    vec3 p = center + face_normal * offset + voxel_clipmap.anchor.xyz;
+    irradiance += share * surface_irradiance(p, face_normal, true, size);
+    shares += share;
+  }
+  if (shares > 0.0) irradiance /= shares;
 #endif
-    irradiance += light.radiance * (attenuation * cos_theta * visibility);
+  if (shares <= 0.0) {  // no faces volume, or a voxel written without one
+    vec3 p = center + (has_normal ? n * offset : vec3(0.0)) + voxel_clipmap.anchor.xyz;
+    irradiance = surface_irradiance(p, n, has_normal, size);
   }
   vec3 radiance = reflectance * irradiance + emission;
   imageStore(out_radiance, texel, vec4(sanitize_radiance(radiance), opacity));

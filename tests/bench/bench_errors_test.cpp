@@ -209,14 +209,16 @@ TEST_F(VoxgiBenchErrors, BvhStatisticsOfABuiltInScene) {
   EXPECT_TRUE(stderr_has(bad, {"nope.glb"}));
 }
 
-// The injected-light model is exact for voxels that hold one plane (the floor of
+// The injected-light models are exact for voxels that hold one plane (the floor of
 // plane-directional, away from its box), and the command names a scene it cannot measure.
 TEST_F(VoxgiBenchErrors, VoxelLightOfABuiltInScene) {
   const ProcessResult r = voxgi({"bench", "voxel-light", "--scene", "plane-directional",
                                  "--voxel-mm", "100", "--sizes", "2"});
   ASSERT_TRUE(exited_with(r, 0));
-  EXPECT_TRUE(stdout_has(r, {"edge m", "all", "facing", "area", "[0.95,1.00)"}));
-  // Each row: edge, voxels, exact, biases; then per band "[a,b) share all facing area".
+  EXPECT_TRUE(
+      stdout_has(r, {"edge m", "all", "facing", "area", "groups", "by area", "[0.95,1.00)"}));
+  // Each row: edge, voxels, exact, biases; then per band "[a,b) share all facing area groups
+  // by-area".
   std::istringstream lines(r.out);
   std::string line;
   int rows = 0;
@@ -224,9 +226,9 @@ TEST_F(VoxgiBenchErrors, VoxelLightOfABuiltInScene) {
     const size_t band = line.find("[0.95,1.00)");
     if (line.find('|') == std::string::npos || band == std::string::npos) continue;
     std::istringstream fields(line.substr(band + 11));
-    std::string share, all, facing, area;
-    fields >> share >> all >> facing >> area;
-    for (const std::string& bias : {all, facing, area}) {
+    std::string share, all, facing, area, groups, by_area;
+    fields >> share >> all >> facing >> area >> groups >> by_area;
+    for (const std::string& bias : {all, facing, area, groups, by_area}) {
       EXPECT_LT(std::abs(std::stod(bias)), 0.2) << line;
     }
     ++rows;

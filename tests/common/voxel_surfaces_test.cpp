@@ -5,9 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "engine/scene/scene_builder.hpp"
 #include "tests/common/voxel_test_support.hpp"
@@ -239,6 +241,54 @@ TEST_F(VoxelSurfacesTest, VertexColoursUvSetsAndTextureTransformsReachTheVoxels)
   EXPECT_NEAR(white.albedo.x, 0.8f * 1.0f, tolerance);
   EXPECT_NEAR(white.albedo.y, 0.8f * 0.5f, tolerance);
   EXPECT_NEAR(white.albedo.z, 0.8f * 0.25f, tolerance);
+}
+
+// The faces volume keeps the surfaces of a voxel apart by the way they face, so that injection
+// can light each with its own normal (contracts/voxel_volumes.glsl): a floor meeting a wall
+// gives two groups, the two faces of a thin slab two opposite ones, a plain floor one.
+TEST_F(VoxelSurfacesTest, FacesKeepTheSurfacesOfAVoxelApart) {
+  scene::SceneBuilder b("faces");
+  const int white = b.add_material(diffuse({0.8f, 0.8f, 0.8f}));
+  b.add_quad("floor", {2, 2.5f, 2}, {0, 0, 4}, {4, 0, 0}, white);    // facing +y
+  b.add_quad("wall", {2.5f, 2.5f, 2}, {0, 3, 0}, {0, 0, 4}, white);  // facing +x
+  b.add_quad("slab_top", {4, 5.51f, 2}, {0, 0, 2}, {2, 0, 0}, white);
+  b.add_quad("slab_bottom", {4, 5.49f, 2}, {2, 0, 0}, {0, 0, 2}, white);
+  const scene::Scene scene = b.finish();
+  VoxelRun run(scene, kOneMetreVoxels);
+  run.render(glm::vec3(4.0f));
+  const VoxelVolumes v = run.read();
+  ASSERT_FALSE(v.faces.empty());
+  const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  // Expected groups (by index) of the voxel holding `world`; their shares add up to 1.
+  auto expect_groups = [&](const char* what, const glm::dvec3& world, std::vector<int> groups,
+                           float share_each) {
+    const glm::ivec3 w = glm::ivec3(glm::floor(v.window_coord(0, world)));
+    const glm::uvec4 texel = v.faces[v.texel(0, w)];
+    float total = 0.0f;
+    for (int g = 0; g < 6; ++g) {
+      const VoxelFace face = decode_voxel_face(texel, g);
+      const bool expected = std::find(groups.begin(), groups.end(), g) != groups.end();
+      std::printf("%s: group %d share %.3f normal %.3f %.3f %.3f\n", what, g, face.share,
+                  face.normal.x, face.normal.y, face.normal.z);
+      if (!expected) {
+        EXPECT_EQ(face.share, 0.0f) << what << ", group " << g;
+        continue;
+      }
+      EXPECT_GT(face.share, 0.0f) << what << ", group " << g;
+      if (share_each > 0.0f) {
+        EXPECT_NEAR(face.share, share_each, 1.0f / 31.0f) << what;
+      }
+      EXPECT_GT(glm::dot(face.normal, axes[g]), 0.9995f) << what << ", group " << g;
+      total += face.share;
+    }
+    EXPECT_NEAR(total, 1.0f, 1.5f / 31.0f) << what;
+  };
+  expect_groups("floor", {4.5, 2.5, 4.5}, {2}, 1.0f);
+  expect_groups("floor meeting the wall", {2.5, 2.5, 3.5}, {0, 2}, 0.0f);
+  expect_groups("thin slab", {4.5, 5.5, 2.5}, {2, 3}, 0.5f);
+  // An empty voxel has no groups.
+  const glm::ivec3 empty = glm::ivec3(glm::floor(v.window_coord(0, {5.5, 4.5, 5.5})));
+  EXPECT_EQ(v.faces[v.texel(0, empty)], glm::uvec4(0u));
 }
 
 }  // namespace

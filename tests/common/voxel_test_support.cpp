@@ -114,7 +114,26 @@ VoxelVolumes VoxelRun::read() {
   v.albedo = decode(v.albedo_bytes, false);
   v.normal = decode(v.normal_bytes, true);
   v.emission = decode(v.emission_bytes, true);
+  if (gpu::Image* faces = gpu_->executor->image("voxel.faces")) {
+    const std::vector<uint8_t> bytes = faces->download(VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    v.faces.resize(bytes.size() / sizeof(glm::uvec4));
+    std::memcpy(v.faces.data(), bytes.data(), v.faces.size() * sizeof(glm::uvec4));
+  }
   return v;
+}
+
+VoxelFace decode_voxel_face(const glm::uvec4& faces, int group) {
+  VoxelFace face;
+  face.share = float((faces.w >> (5 * group)) & 31u) / 31.0f;
+  const uint32_t bits = (faces[group >> 1] >> (16 * (group & 1))) & 0xFFFFu;
+  const glm::vec2 e = glm::vec2(float(bits & 0xFFu), float(bits >> 8)) / 254.0f * 2.0f - 1.0f;
+  // The octahedral map's inverse.
+  glm::vec3 n(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
+  const float t = std::max(-n.z, 0.0f);
+  n.x += n.x >= 0.0f ? -t : t;
+  n.y += n.y >= 0.0f ? -t : t;
+  face.normal = glm::normalize(n);
+  return face;
 }
 
 bool triangle_overlaps_voxel(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,

@@ -21,12 +21,20 @@
 
 namespace voxgi::test {
 
+// One group of a faces texel (contracts/voxel_volumes.glsl), decoded: share 0 for none.
+struct VoxelFace {
+  glm::vec3 normal{0.0f};
+  float share = 0.0f;
+};
+VoxelFace decode_voxel_face(const glm::uvec4& faces, int group);
+
 struct VoxelVolumes {
   uint32_t resolution = 0;
   uint32_t levels = 0;
   contracts::VoxelClipmapInfo info{};
   std::vector<uint8_t> albedo_bytes, normal_bytes, emission_bytes;  // raw texels
   std::vector<glm::vec4> albedo, normal, emission;                  // decoded
+  std::vector<glm::uvec4> faces;  // packed (contracts/voxel_volumes.glsl); empty without them
 
   // Texel index of window voxel `w` of `level` through the toroidal mapping of `info`.
   size_t texel(int level, const glm::ivec3& w) const;

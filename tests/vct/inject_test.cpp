@@ -7,6 +7,9 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/scene/scene_builder.hpp"
 #include "tests/gpu/gpu_test_env.hpp"
@@ -121,6 +124,112 @@ TEST_F(InjectTest, MatchesTheLambertFormulaAndSkipsStaticFrames) {
   EXPECT_EQ(graph.skipped("inject"), "");
   graph.render(1, /*lights_changed=*/true);
   EXPECT_EQ(graph.skipped("inject"), "");
+}
+
+// A faces texel (contracts/voxel_volumes.glsl) of axis-aligned groups: (group, share in 31sts).
+glm::vec4 faces_texel(const std::vector<std::pair<int, uint32_t>>& groups) {
+  glm::uvec4 faces(0u);
+  for (const auto& [g, steps] : groups) {
+    // The octahedral code of the axis normal of group g, 8 bits per coordinate (254 steps).
+    glm::vec3 n(0.0f);
+    n[g >> 1] = (g & 1) == 0 ? 1.0f : -1.0f;
+    glm::vec2 e(n.x, n.y);
+    if (n.z < 0.0f) e = glm::vec2(1.0f - std::abs(n.y), 1.0f - std::abs(n.x));
+    const glm::uvec2 code = glm::uvec2(glm::round((e * 0.5f + 0.5f) * 254.0f));
+    faces[g >> 1] |= (code.x | (code.y << 8)) << (16 * (g & 1));
+    faces.w |= steps << (5 * g);
+  }
+  return glm::vec4(glm::uintBitsToFloat(faces.x), glm::uintBitsToFloat(faces.y),
+                   glm::uintBitsToFloat(faces.z), glm::uintBitsToFloat(faces.w));
+}
+
+std::string faces_inject_graph() {
+  const std::string clipmap =
+      "{ \"type\": \"clipmap\", \"resolution\": 16, \"levels\": 1, \"persistent\": true, "
+      "\"format\": ";
+  std::string graph = "{ \"name\": \"vct-inject-faces-test\", \"resources\": {\n";
+  for (const char* r : {"albedo:rgba8", "normal:rgba16f", "faces:rgba32ui"}) {
+    const std::string spec(r);
+    const size_t colon = spec.find(':');
+    graph += "\"voxel." + spec.substr(0, colon) + "\": " + clipmap + "\"" + spec.substr(colon + 1) +
+             "\" },\n";
+  }
+  graph += "\"vct.radiance\": " + clipmap + "\"rgba16f\" },\n";
+  graph +=
+      "\"voxel.clipmap_info\": { \"type\": \"buffer\", \"size\": 288, \"persistent\": true } },\n"
+      "\"passes\": [\n"
+      " { \"name\": \"volumes\", \"type\": \"vcttest.volumes\", \"out\": { \"clipmap_info\": "
+      "\"voxel.clipmap_info\", \"albedo\": \"voxel.albedo\", \"normal\": \"voxel.normal\", "
+      "\"faces\": \"voxel.faces\" } },\n"
+      " { \"name\": \"inject\", \"type\": \"vct.inject\", \"in\": { \"clipmap_info\": "
+      "\"voxel.clipmap_info\", \"albedo\": \"voxel.albedo\", \"normal\": \"voxel.normal\", "
+      "\"faces\": \"voxel.faces\" }, \"out\": { \"radiance\": \"vct.radiance\" } } ],\n"
+      "\"outputs\": { \"radiance\": \"vct.radiance\" } }\n";
+  return graph;
+}
+
+// With the faces volume, each way a voxel's surfaces face is lit on its own (its normal, its
+// cosine), weighted by its area share: a floor meeting a wall under a light above them, the two
+// faces of a thin slab (the face turned away is dark; without faces the slab, whose normals
+// cancel, was lit whole as if it faced the light), against the formula.
+TEST_F(InjectTest, LightsEachFacingOfAVoxelOnItsOwn) {
+  const glm::vec3 light_position(0.3f, 0.6f, 0.0f);
+  const float intensity = 3.0f;
+  scene::SceneBuilder b("light");
+  scene::Light light;
+  light.type = scene::LightType::Point;
+  light.intensity = intensity;
+  b.add_light(light, light_position);
+  scene::Scene scene = b.finish();
+
+  VolumeData data;
+  data.info = make_clipmap_info(kR, 1, kVoxel, glm::vec3(0.0f));
+  CpuClipmap albedo(kR, 1), normal(kR, 1), faces(kR, 1);
+  struct Voxel {
+    const char* what;
+    glm::ivec3 window;
+    std::vector<std::pair<int, uint32_t>> groups;  // group (0..5 = +X..-Z), share in 31sts
+  };
+  const std::vector<Voxel> voxels = {
+      {"floor meeting a wall", {8, 4, 8}, {{0, 10}, {2, 21}}},
+      {"thin slab", {6, 4, 8}, {{2, 16}, {3, 15}}},
+      {"floor", {10, 4, 8}, {{2, 31}}},
+  };
+  const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const Voxel& v : voxels) {
+    const glm::ivec3 t = clipmap_texel(data.info, v.window, 0);
+    albedo.at(t) = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+    glm::vec3 mean(0.0f);
+    for (const auto& [g, steps] : v.groups) mean += axes[g] * (float(steps) / 31.0f);
+    normal.at(t) = glm::vec4(mean, 1.0f);  // plane offset 0: surfaces through the centre
+    faces.at(t) = faces_texel(v.groups);
+  }
+  data.volumes["albedo"] = albedo;
+  data.volumes["normal"] = normal;
+  data.volumes["faces"] = faces;
+  VolumeGraph graph(faces_inject_graph(), &data, scene);
+  graph.render();
+  const std::vector<glm::vec4> radiance = graph.download("vct.radiance");
+
+  const float a = std::round(0.6f * 255.0f) / 255.0f;
+  for (const Voxel& v : voxels) {
+    const glm::vec3 centre =
+        glm::vec3(data.info.levels[0].min_corner_size) + (glm::vec3(v.window) + 0.5f) * kVoxel;
+    const glm::vec3 to_light = light_position - centre;
+    const float d2 = glm::dot(to_light, to_light);
+    const glm::vec3 l = to_light / std::sqrt(d2);
+    // Per group: L_g = a / pi I / d^2 max(n_g . l, 0); the voxel holds their share-weighted mean.
+    float shares = 0.0f, mean = 0.0f;
+    for (const auto& [g, steps] : v.groups) {
+      const float s = float(steps) / 31.0f;
+      mean += s * a / float(M_PI) * intensity / d2 * std::max(glm::dot(axes[g], l), 0.0f);
+      shares += s;
+    }
+    mean /= shares;
+    const size_t index = albedo.index(clipmap_texel(data.info, v.window, 0));
+    std::printf("%s: radiance %.5f, expected %.5f\n", v.what, radiance[index].r, mean);
+    EXPECT_NEAR(radiance[index].r, mean, 2e-3f + 2e-3f * mean) << v.what;
+  }
 }
 
 }  // namespace

@@ -55,7 +55,7 @@ class VolumePass final : public graph::Pass {
     VkCommandBuffer cmd = ctx.cmd();
     vkCmdUpdateBuffer(cmd, ctx.resource("clipmap_info").buffer->handle(), 0, sizeof(ClipmapInfo),
                       &data_->info);
-    for (const char* slot : {"albedo", "normal", "emission", "radiance"}) {
+    for (const char* slot : {"albedo", "normal", "emission", "faces", "radiance"}) {
       if (!ctx.has(slot)) continue;
       auto it = data_->volumes.find(slot);
       if (it == data_->volumes.end()) {
@@ -94,7 +94,8 @@ class VolumePass final : public graph::Pass {
           bytes.push_back(static_cast<uint8_t>(h & 0xff));
           bytes.push_back(static_cast<uint8_t>(h >> 8));
         }
-      } else if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+      } else if (format == VK_FORMAT_R32G32B32A32_SFLOAT || format == VK_FORMAT_R32G32B32A32_UINT) {
+        // Integer texels travel as the floats' bits (see CpuClipmap).
         const size_t at = bytes.size();
         bytes.resize(at + 16);
         std::memcpy(bytes.data() + at, &v, 16);
@@ -121,10 +122,12 @@ void register_volume_pass(graph::Registry& registry, const VolumeData* data) {
   info.type = "vcttest.volumes";
   info.doc = "test: uploads CPU clipmaps";
   const graph::ResourceKinds clipmap = graph::kinds(graph::ResourceKind::Clipmap);
-  info.outputs = {
-      transfer_output("clipmap_info", graph::kinds(graph::ResourceKind::Buffer), false),
-      transfer_output("albedo", clipmap, true), transfer_output("normal", clipmap, true),
-      transfer_output("emission", clipmap, true), transfer_output("radiance", clipmap, true)};
+  info.outputs = {transfer_output("clipmap_info", graph::kinds(graph::ResourceKind::Buffer), false),
+                  transfer_output("albedo", clipmap, true),
+                  transfer_output("normal", clipmap, true),
+                  transfer_output("emission", clipmap, true),
+                  transfer_output("faces", clipmap, true),
+                  transfer_output("radiance", clipmap, true)};
   info.may_skip = true;
   registry.add(std::move(info), [data] { return std::make_unique<VolumePass>(data); });
 }

@@ -29,7 +29,8 @@ namespace voxgi::test {
 using ClipmapInfo = contracts::VoxelClipmapInfo;
 
 // A clipmap of R^3 x L voxels as RGBA floats, addressed by level and window voxel with the
-// toroidal wrap of voxel_clipmap.glsl.
+// toroidal wrap of voxel_clipmap.glsl. For an integer format (faces) each float holds the bits
+// of a 32-bit word (glm::uintBitsToFloat).
 struct CpuClipmap {
   int resolution = 0;
   int levels = 0;
@@ -57,7 +58,8 @@ ClipmapInfo make_clipmap_info(int resolution, int levels, float base_voxel, glm:
 // the pass skips (so downstream skip logic can be tested).
 struct VolumeData {
   ClipmapInfo info{};
-  std::map<std::string, CpuClipmap> volumes;  // by output slot: albedo, normal, emission, radiance
+  std::map<std::string, CpuClipmap> volumes;  // by output slot: albedo, normal, emission, faces,
+                                              // radiance
   uint64_t version = 1;
 };
 

@@ -508,10 +508,9 @@ std::vector<EnergyBoundScene> energy_bound_scenes() {
   // Cornell box: measured 1.00 to 1.09 for vct (32^3 and 64^3, 4 to 16 cones; 1.06 to 1.16
   // before cones had lanes); the same edge excess as the lit square's.
   // Thin wall: measured 1.41 to 1.51 for vct (1.46 to 1.83 before voxels sent each side the share
-  // of their surfaces facing it). Both faces of the 1 mm wall fall in the same voxels, whose
-  // normals cancel: the voxels hold the lit face's radiance and send half of it to each side, so
-  // the cones of the dark side gather light it does not get (docs/error-budget.md, "What is
-  // left").
+  // of their surfaces facing it). Lighting a voxel's faces one by one left it there, so the two
+  // faces of the 1 mm wall, which straddle a voxel face, fall in different voxels; the excess has
+  // another cause, not yet found (docs/error-budget.md, "What is left").
   return {{"cornell_point_light", cornell_lit_by_its_point_light, 0.20},
           {"thin_wall", [] { return thin_wall(); }, 1.0}};
 }

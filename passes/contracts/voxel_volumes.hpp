@@ -5,11 +5,16 @@
 
 #include <vulkan/vulkan.h>
 
+#include "engine/graph/pass.hpp"
+
 namespace voxgi::contracts {
 
 inline constexpr VkFormat kVoxelAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;
 inline constexpr VkFormat kVoxelNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kVoxelEmissionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kVoxelFacesFormat = VK_FORMAT_R32G32B32A32_UINT;
+
+// An injection's optional "faces" slot: the voxelizer's faces, read with texelFetch in compute.
+graph::SlotSpec voxel_faces_input();
 
 }  // namespace voxgi::contracts

@@ -148,12 +148,7 @@ void register_voxel_lighting(graph::Registry& registry) {
       clipmap_input("albedo", "voxel albedo (rgb) and opacity (a)"),
       clipmap_input("normal", "voxel averaged normal (xyz), occupancy (w)"),
       clipmap_input("emission", "voxel emitted radiance; unbound: none", true),
-      graph::sampled_clipmap_input("faces",
-                                   "the voxel's surfaces grouped by facing "
-                                   "(contracts/voxel_volumes.glsl); each group is lit with its "
-                                   "own normal, weighted by its area; unbound: the voxel is lit "
-                                   "as one plane",
-                                   true, {contracts::kVoxelFacesFormat}),
+      contracts::voxel_faces_input(),
       contracts::shadow_maps_input("from common.shadow_maps (occlusion = shadow_map)"),
       contracts::shadow_matrices_input("from common.shadow_maps (occlusion = shadow_map)"),
   };

@@ -125,12 +125,7 @@ void register_inject(graph::Registry& registry) {
                                    false, kFloatRgba),
       graph::sampled_clipmap_input("emission", "voxel emitted radiance (rgb); unbound: none", true,
                                    kFloatRgba),
-      graph::sampled_clipmap_input("faces",
-                                   "the voxel's surfaces grouped by facing "
-                                   "(contracts/voxel_volumes.glsl); each group is lit with its "
-                                   "own normal, weighted by its area; unbound: the voxel is lit "
-                                   "as one plane",
-                                   true, {contracts::kVoxelFacesFormat}),
+      contracts::voxel_faces_input(),
       contracts::shadow_maps_input("from common.shadow_maps; unbound: lights are unshadowed"),
       contracts::shadow_matrices_input("from common.shadow_maps"),
   };

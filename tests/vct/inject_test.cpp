@@ -51,15 +51,20 @@ std::string inject_graph() {
 
 class InjectTest : public GpuTest {};
 
-TEST_F(InjectTest, MatchesTheLambertFormulaAndSkipsStaticFrames) {
-  const glm::vec3 light_position(0.0f, 0.6f, 0.0f);
-  const float intensity = 3.0f;
+// A scene of one point light and no geometry: the voxels come from the test.
+scene::Scene point_light_scene(glm::vec3 position, float intensity) {
   scene::SceneBuilder b("light");
   scene::Light light;
   light.type = scene::LightType::Point;
   light.intensity = intensity;
-  b.add_light(light, light_position);
-  scene::Scene scene = b.finish();
+  b.add_light(light, position);
+  return b.finish();
+}
+
+TEST_F(InjectTest, MatchesTheLambertFormulaAndSkipsStaticFrames) {
+  const glm::vec3 light_position(0.0f, 0.6f, 0.0f);
+  const float intensity = 3.0f;
+  scene::Scene scene = point_light_scene(light_position, intensity);
 
   VolumeData data;
   data.info = make_clipmap_info(kR, 1, kVoxel, glm::vec3(0.0f));
@@ -175,12 +180,7 @@ std::string faces_inject_graph() {
 TEST_F(InjectTest, LightsEachFacingOfAVoxelOnItsOwn) {
   const glm::vec3 light_position(0.3f, 0.6f, 0.0f);
   const float intensity = 3.0f;
-  scene::SceneBuilder b("light");
-  scene::Light light;
-  light.type = scene::LightType::Point;
-  light.intensity = intensity;
-  b.add_light(light, light_position);
-  scene::Scene scene = b.finish();
+  scene::Scene scene = point_light_scene(light_position, intensity);
 
   VolumeData data;
   data.info = make_clipmap_info(kR, 1, kVoxel, glm::vec3(0.0f));

@@ -1,0 +1,15 @@
+#include "passes/contracts/voxel_volumes.hpp"
+
+#include "engine/graph/pass_helpers.hpp"
+
+namespace voxgi::contracts {
+
+graph::SlotSpec voxel_faces_input() {
+  return graph::sampled_clipmap_input(
+      "faces",
+      "the voxel's surfaces grouped by facing (contracts/voxel_volumes.glsl); each group is lit "
+      "with its own normal, weighted by its area; unbound: the voxel is lit as one plane",
+      true, {kVoxelFacesFormat});
+}
+
+}  // namespace voxgi::contracts

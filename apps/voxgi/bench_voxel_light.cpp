@@ -14,8 +14,9 @@
 // away from the light count as unlit, so together with the cosine they count twice), and the
 // area mean over the surfaces that face the light (what lookups just in front of the mean
 // surface plane see where that plane faces the light). Printed per voxel edge: the mean of
-// the exact value over voxels, the model's bias with each visibility and with an area-weighted
-// mean normal, and the same split by how far the writers' normals agree.
+// the exact value over voxels, the model's bias with each visibility, with an area-weighted
+// mean normal and with the voxelizer's faces (each facing lit on its own, weighted by triangle
+// count or by area), and the same split by how far the writers' normals agree.
 
 #include <algorithm>
 #include <array>

@@ -192,14 +192,20 @@ void main() {
   float hi = min(center + half_range, tri_aabb_max[axis]) + VOXEL_OVERLAP_EPSILON;
   int first = max(int(floor(lo)), box_min[axis]);
   int last = min(min(int(floor(hi)), box_max[axis] - 1), first + 3);
+  // The voxels (at most four) the triangle overlaps, found once: the faces' area weights need
+  // their count before any of them is stored.
+  uint overlapped = 0u;
   int written = 0;
   for (int k = first; k <= last; ++k) {
     voxel[axis] = k;
-    if (overlaps(voxel)) ++written;
+    if (overlaps(voxel)) {
+      overlapped |= 1u << uint(k - first);
+      ++written;
+    }
   }
   for (int k = first; k <= last; ++k) {
     voxel[axis] = k;
-    if (overlaps(voxel)) store(voxel, 1.0 / float(written));
+    if ((overlapped & (1u << uint(k - first))) != 0u) store(voxel, 1.0 / float(written));
   }
 #endif
 }

@@ -42,9 +42,9 @@ float voxel_mean_clamped_cosine(float len, float c) {
 }
 
 // The share of a voxel's surface seen from direction v (unit, towards the viewer) that faces
-// the viewer: projected front area over all projected area, mean max(n.v, 0) over
-// mean |n.v|, from the mean normal m (the normal texel's xyz, any length up to 1) as above. 1 or 0 for one plane in front or behind, 1/2
-// where the writers cancel (a thin wall's two faces).
+// the viewer: projected front area over all projected area, mean max(n.v, 0) over mean
+// |n.v|, from the mean normal m (the normal texel's xyz, any length up to 1) as above. 1 or 0
+// for one plane in front or behind, 1/2 where the writers cancel (a thin wall's two faces).
 float voxel_front_share(vec3 mean_normal, vec3 v) {
   float len = length(mean_normal);
   if (!(len >= 1e-6) || isinf(len)) return 0.5;
@@ -92,6 +92,25 @@ vec3 voxel_face_normal(uvec4 faces, int g) {
   uint bits = (faces[g >> 1] >> (16 * (g & 1))) & 0xFFFFu;
   vec2 e = vec2(float(bits & 0xFFu), float(bits >> 8)) / 254.0 * 2.0 - 1.0;
   return voxel_octahedral_decode(e);
+}
+
+// The groups a faces texel holds: their unit normals and their shares, rescaled to add up to
+// exactly 1 (the 5-bit shares only nearly do). Returns how many (0: no faces, e.g. a voxel of
+// average_rgba8 or an empty one).
+int voxel_faces_unpack(uvec4 faces, out vec3 normals[VOXEL_FACE_GROUPS],
+                       out float shares[VOXEL_FACE_GROUPS]) {
+  int count = 0;
+  float total = 0.0;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    float share = voxel_face_share(faces, g);
+    if (share <= 0.0) continue;
+    normals[count] = voxel_face_normal(faces, g);
+    shares[count] = share;
+    total += share;
+    ++count;
+  }
+  for (int i = 0; i < count; ++i) shares[i] /= total;
+  return count;
 }
 
 float voxel_encode_plane_offset(float d) {

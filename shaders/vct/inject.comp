@@ -143,20 +143,17 @@ void main() {
   // Each way the voxel's surfaces face lit as a plane of its own, weighted by its area share;
   // or the voxel as one plane.
   vec3 irradiance = vec3(0.0);
-  float shares = 0.0;
+  int groups = 0;
 #if HAS_FACES
-  uvec4 faces = texelFetch(voxel_faces, texel, 0);
-  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-    float share = voxel_face_share(faces, g);
-    if (share <= 0.0) continue;
-    vec3 face_normal = voxel_face_normal(faces, g);
-    vec3 p = center + face_normal * offset + voxel_clipmap.anchor.xyz;
-    irradiance += share * surface_irradiance(p, face_normal, true, size);
-    shares += share;
+  vec3 face_normals[VOXEL_FACE_GROUPS];
+  float face_shares[VOXEL_FACE_GROUPS];
+  groups = voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), face_normals, face_shares);
+  for (int g = 0; g < groups; ++g) {
+    vec3 p = center + face_normals[g] * offset + voxel_clipmap.anchor.xyz;
+    irradiance += face_shares[g] * surface_irradiance(p, face_normals[g], true, size);
   }
-  if (shares > 0.0) irradiance /= shares;
 #endif
-  if (shares <= 0.0) {  // no faces volume, or a voxel written without one
+  if (groups == 0) {  // no faces volume, or a voxel written without one
     vec3 p = center + (has_normal ? n * offset : vec3(0.0)) + voxel_clipmap.anchor.xyz;
     irradiance = surface_irradiance(p, n, has_normal, size);
   }

@@ -16,6 +16,7 @@
 #include "engine/gpu/pipeline.hpp"
 #include "engine/graph/pass.hpp"
 #include "passes/contracts/voxel_clipmap.hpp"
+#include "passes/contracts/voxel_volumes.hpp"
 #include "passes/vct/passes.hpp"
 #include "passes/vct/vct_pipeline.hpp"
 
@@ -31,6 +32,7 @@ struct FilterPush {
 
 constexpr uint32_t kLocal = 4;
 constexpr uint32_t kNormalBinding = 14;
+constexpr uint32_t kFacesBinding = 15;
 
 class FilterPass final : public graph::Pass {
  public:
@@ -43,6 +45,7 @@ class FilterPass final : public graph::Pass {
       volume_slots_.push_back(contracts::kFilteredSlot);
     }
     level_coverage_ = ctx.has("normal");
+    face_facing_ = ctx.has("faces");
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0}};
     for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
@@ -52,10 +55,14 @@ class FilterPass final : public graph::Pass {
     if (level_coverage_) {
       bindings.push_back({kNormalBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
     }
+    if (face_facing_) {
+      bindings.push_back({kFacesBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+    }
     pipeline_.emplace(graph::make_pass_compute(ctx, "vct/filter.comp", bindings, sizeof(FilterPush),
                                                false,
                                                {{"ANISOTROPIC", anisotropic_ ? "1" : "0"},
-                                                {"LEVEL_COVERAGE", level_coverage_ ? "1" : "0"}}));
+                                                {"LEVEL_COVERAGE", level_coverage_ ? "1" : "0"},
+                                                {"FACE_FACING", face_facing_ ? "1" : "0"}}));
     versions_.forget();
   }
 
@@ -83,6 +90,11 @@ class FilterPass final : public graph::Pass {
       if (level_coverage_) {
         const graph::BoundResource& normal = ctx.resource("normal");
         writer.sampled_image(kNormalBinding, normal.view, normal.layout,
+                             ctx.gpu().sampler(gpu::SamplerKind::NearestClamp));
+      }
+      if (face_facing_) {
+        const graph::BoundResource& faces = ctx.resource("faces");
+        writer.sampled_image(kFacesBinding, faces.view, faces.layout,
                              ctx.gpu().sampler(gpu::SamplerKind::NearestClamp));
       }
       for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
@@ -122,9 +134,10 @@ class FilterPass final : public graph::Pass {
 
   bool anisotropic_ = true;
   bool level_coverage_ = false;
+  bool face_facing_ = false;
   std::vector<std::string> volume_slots_;
   std::optional<gpu::ComputePipeline> pipeline_;
-  graph::InputVersions versions_{{"clipmap_info", "radiance", "normal"}};
+  graph::InputVersions versions_{{"clipmap_info", "radiance", "normal", "faces"}};
 };
 
 void validate_filter(graph::PassCheck& check) {
@@ -174,7 +187,12 @@ void register_filter(graph::Registry& registry) {
           "voxel normals (common.voxelize); with them, a coarser level's voxels that no finer "
           "level covers hold a surface as thin as the finer level's filter would (anisotropic: "
           "opaque across a plane, 1/2^level of it along)",
-          true, {VK_FORMAT_R16G16B16A16_SFLOAT})};
+          true, {VK_FORMAT_R16G16B16A16_SFLOAT}),
+      graph::sampled_clipmap_input(
+          "faces",
+          "the voxels' surfaces grouped by facing (common.voxelize); with them, a voxel's light "
+          "enters each directional volume less the share of its surfaces that face away",
+          true, {contracts::kVoxelFacesFormat})};
   info.outputs = {filtered_output("filtered", "isotropic filtered volume (mode isotropic)")};
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   for (size_t i = 0; i < contracts::kDirectionalSlots.size(); ++i) {

@@ -20,7 +20,9 @@
 //   Volume +X is what a cone travelling in +X sees: each voxel is the average over the four
 //   child columns of the front-to-back composite along +X (children at lower x in front).
 //   Voxels with no finer data (level 0 mip 0, the part of a level no finer level covers) hold
-//   the injected value in all six; where vct.filter has the voxel normals, the voxels of a
+//   the injected value in all six. Where vct.filter has the voxels' faces, such a voxel enters
+//   the filter of volume d less the area share of its surfaces that face away from a cone
+//   travelling along d; where vct.filter has the voxel normals, the voxels of a
 //   coarser level l > 0 among them hold the opacity that filtering a surface voxelized at the
 //   finest level would have given them (along axis k a (|n_k| + (1 - |n_k|) / 2^l); isotropic:
 //   the fraction of fine voxels the surface fills).
@@ -36,8 +38,8 @@
 //   where the device has it.
 //   Optionally define VCT_FACING_NORMALS as the name of a sampler3D over the voxel normals
 //   (contracts/voxel_volumes.glsl, same clipmap layout, sampled like the volumes): then a
-//   sample at mip 0 of a level sends its light only towards the side its surfaces face
-//   (vct_facing below).
+//   sample at mip 0 of the finest level present sends its light only towards the side its
+//   surfaces face (vct_facing below).
 //
 // API
 //   vct_sample(p, dir, lod)            filtered volume value (stored form) at a point
@@ -145,8 +147,12 @@ float vct_facing(vec4 n4, vec3 dir) {
 #endif
 
 // Integer level of detail k (voxel edge = level-0 edge * 2^k): clipmap level k while there is
-// one, then the mips of the coarsest level.
-vec4 vct_fetch_lod(vec3 p, vec3 dir, int k) {
+// one, then the mips of the coarsest level. `finest` is the finest level whose window holds p:
+// only there does mip 0 hold the voxels' own light, which the facing test below is about.
+// Coarser levels hold there the filter of finer voxels, into which vct.filter (given the
+// faces) has already let each voxel's light only towards where its surfaces face; a mean
+// normal of such a composite would dim it a second time (docs/error-budget.md, tenth round).
+vec4 vct_fetch_lod(vec3 p, vec3 dir, int k, int finest) {
   int level = min(k, voxel_level_count() - 1);
   int mip = k - level;
   if (!voxel_level_valid(level)) return vec4(0.0);
@@ -157,7 +163,7 @@ vec4 vct_fetch_lod(vec3 p, vec3 dir, int k) {
 #endif
 #ifdef VCT_FACING_NORMALS
   // Only samples that carry light need the normals (most of a cone's samples are empty space).
-  if (mip == 0 && any(greaterThan(v.rgb, vec3(0.0)))) {
+  if (mip == 0 && level == finest && any(greaterThan(v.rgb, vec3(0.0)))) {
     v.rgb *= vct_facing(vct_fetch(VCT_FACING_NORMALS, p, level, 0), dir);
   }
 #endif
@@ -208,9 +214,9 @@ vec4 vct_sample(vec3 p, vec3 dir, float lod) {
   lod = clamp(lod, float(finest), vct_max_lod());
   int k = int(floor(lod));
   float f = lod - float(k);
-  vec4 a = vct_fetch_lod(p, dir, k);
+  vec4 a = vct_fetch_lod(p, dir, k, finest);
   if (f <= 0.0) return a;
-  return mix(a, vct_fetch_lod(p, dir, k + 1), f);
+  return mix(a, vct_fetch_lod(p, dir, k + 1, finest), f);
 }
 
 struct VctCone {

@@ -9,7 +9,9 @@
 //     run finest first, so level l-1 is final when level l reads it.
 //   STAGE_MIP: mip m of every level from mip m-1 of the same level (texel t <- 2t + {0,1}^3).
 // Isotropic: box filter of the 8 children. Anisotropic (ANISOTROPIC=1): per direction, the
-// front-to-back composite of each child pair along the axis, averaged over the 4 columns.
+// front-to-back composite of each child pair along the axis, averaged over the 4 columns; with
+// the voxels' faces (FACE_FACING), a child that holds its own injected light enters the
+// composite of a direction without the light of its surfaces that face away from it.
 // NaN/Inf and out-of-range values are scrubbed when read. The filter works on premultiplied
 // radiance and opacity; what it stores is the optical-depth form of
 // contracts/vct_volume_encoding.glsl.
@@ -38,6 +40,12 @@ layout(set = 0, binding = 1) uniform sampler3D radiance;  // mip 0 read with tex
 #if LEVEL_COVERAGE
 // The voxels' averaged normals (contracts/voxel_volumes.glsl), read with texelFetch.
 layout(set = 0, binding = 14) uniform sampler3D voxel_normal;
+#endif
+#ifndef FACE_FACING
+#define FACE_FACING 0
+#endif
+#if FACE_FACING
+layout(set = 0, binding = 15) uniform usampler3D voxel_faces;
 #endif
 // Source (mip m-1, or mip 0 of the finer level) and destination views of each volume.
 layout(set = 0, binding = 2, rgba16f) uniform image3D src0;
@@ -111,11 +119,51 @@ vec4 over(vec4 front, vec4 back) {
   return vec4(front.rgb + (1.0 - front.a) * back.rgb, front.a + (1.0 - front.a) * back.a);
 }
 
+#if FACE_FACING
+// True where mip 0 of `level` at window coordinate `window` holds its own injected light, not
+// the filter of a finer level's voxels (STAGE_LEVEL's from_finer).
+bool holds_own_light(int level, ivec3 window) {
+  if (level == 0 || !voxel_level_valid(level - 1)) return true;
+  ivec3 world = window + voxel_clipmap.levels[level].origin_voxel.xyz;
+  ivec3 first = world * 2 - voxel_clipmap.levels[level - 1].origin_voxel.xyz;
+  return !(all(greaterThanEqual(first, ivec3(0))) &&
+           all(lessThan(first + 1, ivec3(voxel_resolution()))));
+}
+
+// The share of a voxel's light that reaches a cone travelling along `volume`'s axis: all of
+// it less the area share of its surfaces facing away from the cone's origin, each by how far
+// it faces away (|cos|). A sunlit floor's voxels thus send nothing down through it, a wall's
+// nothing out of its back, and a thin wall's voxels holding both faces half each way, while
+// surfaces seen edge-on along the axis keep their light: a cone that travels along x and down
+// reads the floor through both its x and its -y volume, and the floor must look as bright in
+// both (halving edge-on surfaces made every view 15-30 points dark; docs/error-budget.md).
+// The cone tracer's per-sample facing test covers the voxels it reads at mip 0 of the finest
+// level; this covers every composite built from them.
+float volume_facing(uvec4 faces, int volume) {
+  vec3 normals[VOXEL_FACE_GROUPS];
+  float shares[VOXEL_FACE_GROUPS];
+  int count = voxel_faces_unpack(faces, normals, shares);
+  if (count == 0) return 1.0;
+  int axis = volume / 2;
+  float travel = (volume & 1) == 0 ? 1.0 : -1.0;
+  float away = 0.0;
+  for (int g = 0; g < count; ++g) away += shares[g] * max(normals[g][axis] * travel, 0.0);
+  return clamp(1.0 - away, 0.0, 1.0);
+}
+#endif
+
 // The filtered value for `volume` from its 8 children's texels, ordered x fastest (child i
 // has offset (i & 1, (i >> 1) & 1, (i >> 2) & 1)).
-vec4 filter_children(int volume, ivec3 child[8]) {
+vec4 filter_children(int volume, ivec3 child[8], bool own[8]) {
   vec4 c[8];
-  for (int i = 0; i < 8; ++i) c[i] = load_src(volume, child[i]);
+  for (int i = 0; i < 8; ++i) {
+    c[i] = load_src(volume, child[i]);
+#if FACE_FACING && ANISOTROPIC
+    if (own[i] && c[i].a > 0.0) {
+      c[i].rgb *= volume_facing(texelFetch(voxel_faces, child[i], 0), volume);
+    }
+#endif
+  }
 #if ANISOTROPIC
   // Volume 2k+s looks along axis k, s = 0 positive (lower coordinate in front), 1 negative.
   int axis = volume / 2;
@@ -175,6 +223,7 @@ void main() {
     ivec3 texel = voxel_texel(id, level);
     bool from_finer = false;
     ivec3 child[8];
+    bool own[8];
     if (level > 0 && voxel_level_valid(level - 1) && voxel_level_valid(level)) {
       // World voxel index of this voxel, its first child in the finer level, and that child's
       // window coordinate there.
@@ -184,10 +233,15 @@ void main() {
       for (int i = 0; i < 8; ++i) {
         ivec3 offset = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
         child[i] = voxel_texel(first + offset, level - 1);
+#if FACE_FACING
+        own[i] = holds_own_light(level - 1, first + offset);
+#else
+        own[i] = false;
+#endif
       }
     }
     if (from_finer) {
-      for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, filter_children(v, child));
+      for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, filter_children(v, child, own));
     } else {
       vec4 injected = scrub(texelFetch(radiance, texel, 0));
 #if LEVEL_COVERAGE
@@ -209,9 +263,18 @@ void main() {
   int level = id.z / rm;
   ivec3 local = ivec3(id.xy, id.z - level * rm);
   ivec3 child[8];
+  bool own[8];
+  ivec3 origin = voxel_clipmap.levels[level].origin_voxel.xyz;
   for (int i = 0; i < 8; ++i) {
     ivec3 c = local * 2 + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
     child[i] = ivec3(c.xy, c.z + level * rs);
+    // Mip 0 texel c holds the world voxel w with w mod r = c, whose window coordinate is
+    // (c - origin) mod r. Only mip 0 holds voxels' own light.
+#if FACE_FACING
+    own[i] = pc.mip == 1 && holds_own_light(level, (c - origin) & (rs - 1));
+#else
+    own[i] = false;
+#endif
   }
-  for (int v = 0; v < VOLUMES; ++v) store_dst(v, id, filter_children(v, child));
+  for (int v = 0; v < VOLUMES; ++v) store_dst(v, id, filter_children(v, child, own));
 }

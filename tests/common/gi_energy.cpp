@@ -465,9 +465,8 @@ IndirectComparison compare_lit_box(const VoxelGiSetup& gi, const BoxRadiosity& r
 // ---------------------------------------------------------------------------------------------
 // Shared expectations
 
-void expect_unlit_underside_sends_nothing(const VoxelGiSetup& gi, SquareLight light,
-                                          double fraction) {
-  for (double height : kUndersideHeights) {
+void expect_unlit_underside_sends_nothing(const VoxelGiSetup& gi, SquareLight light) {
+  for (const auto& [height, fraction] : kUndersideCases) {
     const LitSquare above{light, height};
     const LitSquare under{light, height, true};
     const IndirectComparison c = {render_at_every_placement(gi, lit_square_scene(under), 16),

@@ -1,14 +1,14 @@
 #pragma once
 // Graph texts of the volume-level tests: uploaded radiance (and, with `with_normals`, voxel
-// normals) -> vct.filter (isotropic or anisotropic), with the filtered volumes persistent so
-// tests can read them afterwards.
+// normals; with `with_faces`, the voxels' faces) -> vct.filter (isotropic or anisotropic),
+// with the filtered volumes persistent so tests can read them afterwards.
 
 #include <string>
 
 namespace voxgi::test {
 
 inline std::string filter_graph(int resolution, int levels, bool anisotropic,
-                                bool with_normals = false) {
+                                bool with_normals = false, bool with_faces = false) {
   const std::string clipmap = "{ \"type\": \"clipmap\", \"format\": \"rgba16f\", \"resolution\": " +
                               std::to_string(resolution) +
                               ", \"levels\": " + std::to_string(levels);
@@ -17,7 +17,15 @@ inline std::string filter_graph(int resolution, int levels, bool anisotropic,
       "\"vct.radiance\": " +
       clipmap + ", \"persistent\": true },\n";
   if (with_normals) resources += "\"vct.normal\": " + clipmap + ", \"persistent\": true },\n";
-  const std::string normal_slot = with_normals ? ", \"normal\": \"vct.normal\"" : "";
+  std::string extra_slots = with_normals ? ", \"normal\": \"vct.normal\"" : "";
+  if (with_faces) {
+    resources +=
+        "\"vct.faces\": { \"type\": \"clipmap\", \"format\": \"rgba32ui\", "
+        "\"resolution\": " +
+        std::to_string(resolution) + ", \"levels\": " + std::to_string(levels) +
+        ", \"persistent\": true },\n";
+    extra_slots += ", \"faces\": \"vct.faces\"";
+  }
   std::string outputs;
   if (anisotropic) {
     const char* slots[] = {"pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"};
@@ -36,14 +44,14 @@ inline std::string filter_graph(int resolution, int levels, bool anisotropic,
          "},\n \"passes\": [\n"
          " { \"name\": \"volumes\", \"type\": \"vcttest.volumes\",\n"
          "   \"out\": { \"clipmap_info\": \"voxel.clipmap_info\", \"radiance\": \"vct.radiance\"" +
-         normal_slot +
+         extra_slots +
          " } "
          "},\n"
          " { \"name\": \"filter\", \"type\": \"vct.filter\", \"params\": { \"mode\": \"" +
          std::string(anisotropic ? "anisotropic" : "isotropic") +
          "\" },\n"
          "   \"in\": { \"clipmap_info\": \"voxel.clipmap_info\", \"radiance\": \"vct.radiance\"" +
-         normal_slot +
+         extra_slots +
          " },\n"
          "   \"out\": { " +
          outputs +

@@ -1,6 +1,7 @@
 // vct.filter against a CPU reference on a random 16^3 clipmap with two levels (so the level
-// consistency rule is exercised too), in both modes, every mip of every volume. Random
-// values include NaN, Inf and out-of-range opacity, which the filter must scrub to zero.
+// consistency rule is exercised too), in both modes and anisotropic with random faces,
+// every mip of every volume. Random values include NaN, Inf and out-of-range opacity, which
+// the filter must scrub to zero.
 
 #include <gtest/gtest.h>
 
@@ -63,7 +64,20 @@ glm::vec4 decode_filtered(glm::vec4 stored) {
 // volumes[v][mip]: texels of the whole stacked image at that mip.
 using Reference = std::vector<std::vector<std::vector<glm::vec4>>>;
 
-Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, bool anisotropic) {
+// The share of a voxel's light that volume v's composites receive (shaders/vct/filter.comp,
+// volume_facing): all of it less the area share of the surfaces facing away from a cone
+// travelling along v. With axis-aligned groups (faces_texel), that is group v's share.
+float volume_facing(const glm::vec4& faces_bits, int volume) {
+  const uint32_t shares = glm::floatBitsToUint(faces_bits.w);
+  float total = 0.0f;
+  for (int g = 0; g < 6; ++g) total += float((shares >> (5 * g)) & 31u);
+  if (total == 0.0f) return 1.0f;
+  return 1.0f - float((shares >> (5 * volume)) & 31u) / total;
+}
+
+// `faces`: the voxels' faces (nullptr: the filter has none).
+Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, bool anisotropic,
+                           const CpuClipmap* faces = nullptr) {
   const int volumes = anisotropic ? 6 : 1;
   int mips = 0;
   while ((kR >> mips) > 0) ++mips;
@@ -75,6 +89,15 @@ Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, 
     }
   }
   auto idx = [](glm::ivec3 t, int rm) { return (size_t(t.z) * rm + t.y) * rm + t.x; };
+  // Mip 0 texels that hold their own injected light (not the filter of finer voxels), and a
+  // child's value as a composite of volume v receives it.
+  std::vector<bool> own(size_t(kR) * kR * kR * kLevels, true);
+  auto child_value = [&](int v, glm::ivec3 texel, glm::vec4 value) {
+    if (faces && own[idx(texel, kR)] && value.a > 0.0f) {
+      value = glm::vec4(glm::vec3(value) * volume_facing(faces->at(texel), v), value.a);
+    }
+    return value;
+  };
   for (int level = 0; level < kLevels; ++level) {
     for (int z = 0; z < kR; ++z) {
       for (int y = 0; y < kR; ++y) {
@@ -95,7 +118,8 @@ Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, 
               glm::vec4 c[8];
               for (int i = 0; i < 8; ++i) {
                 const glm::ivec3 o(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-                c[i] = ref[v][0][idx(clipmap_texel(info, first + o, level - 1), kR)];
+                const glm::ivec3 t = clipmap_texel(info, first + o, level - 1);
+                c[i] = child_value(v, t, ref[v][0][idx(t, kR)]);
               }
               value = filter_children(c, v, anisotropic);
             } else {
@@ -104,6 +128,7 @@ Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, 
             }
             ref[v][0][idx(texel, kR)] = scrub(value);
           }
+          own[idx(texel, kR)] = !from_finer;
         }
       }
     }
@@ -121,7 +146,7 @@ Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, 
             for (int i = 0; i < 8; ++i) {
               glm::ivec3 t = local * 2 + glm::ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
               t.z += level * rs;
-              c[i] = ref[v][m - 1][idx(t, rs)];
+              c[i] = m == 1 ? child_value(v, t, ref[v][0][idx(t, rs)]) : ref[v][m - 1][idx(t, rs)];
             }
             ref[v][m][idx({x, y, z}, rm)] = scrub(filter_children(c, v, anisotropic));
           }
@@ -132,10 +157,13 @@ Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, 
   return ref;
 }
 
-class FilterReferenceTest : public GpuTest, public ::testing::WithParamInterface<bool> {};
+enum class FilterMode { Isotropic, Anisotropic, AnisotropicWithFaces };
+
+class FilterReferenceTest : public GpuTest, public ::testing::WithParamInterface<FilterMode> {};
 
 TEST_P(FilterReferenceTest, MatchesCpuReferenceOnEveryMip) {
-  const bool anisotropic = GetParam();
+  const bool anisotropic = GetParam() != FilterMode::Isotropic;
+  const bool with_faces = GetParam() == FilterMode::AnisotropicWithFaces;
   VolumeData data;
   // Windows offset from the origin so that the toroidal wrap is not the identity.
   data.info = make_clipmap_info(kR, kLevels, 0.25f, glm::vec3(1.3f, -0.7f, 2.9f));
@@ -160,10 +188,22 @@ TEST_P(FilterReferenceTest, MatchesCpuReferenceOnEveryMip) {
     }
   }
   data.volumes["radiance"] = radiance;
-  VolumeGraph graph(filter_graph(kR, kLevels, anisotropic), &data,
+  // Random groups with random area shares; a third of the voxels have none (one plane).
+  CpuClipmap faces(kR, kLevels);
+  for (glm::vec4& t : faces.texels) {
+    std::vector<std::pair<int, uint32_t>> groups;
+    for (int g = 0; g < 6; ++g) {
+      if (unit(rng) < 0.3f) groups.push_back({g, 1u + uint32_t(unit(rng) * 30.99f)});
+    }
+    if (unit(rng) < 0.33f) groups.clear();
+    t = faces_texel(groups);
+  }
+  if (with_faces) data.volumes["faces"] = faces;
+  VolumeGraph graph(filter_graph(kR, kLevels, anisotropic, false, with_faces), &data,
                     scene::make_builtin_scene("empty"));
   graph.render();
-  const Reference ref = reference_filter(data.info, radiance, anisotropic);
+  const Reference ref =
+      reference_filter(data.info, radiance, anisotropic, with_faces ? &faces : nullptr);
   const std::vector<std::string> names = filtered_resources(anisotropic);
   for (size_t v = 0; v < names.size(); ++v) {
     for (size_t m = 0; m < ref[v].size(); ++m) {
@@ -190,8 +230,19 @@ TEST_P(FilterReferenceTest, MatchesCpuReferenceOnEveryMip) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Modes, FilterReferenceTest, ::testing::Values(false, true),
-                         [](const auto& mode) { return mode.param ? "anisotropic" : "isotropic"; });
+INSTANTIATE_TEST_SUITE_P(Modes, FilterReferenceTest,
+                         ::testing::Values(FilterMode::Isotropic, FilterMode::Anisotropic,
+                                           FilterMode::AnisotropicWithFaces),
+                         [](const auto& mode) {
+                           switch (mode.param) {
+                             case FilterMode::Isotropic:
+                               return "isotropic";
+                             case FilterMode::Anisotropic:
+                               return "anisotropic";
+                             default:
+                               return "anisotropic_with_faces";
+                           }
+                         });
 
 }  // namespace
 }  // namespace voxgi::test

@@ -25,6 +25,22 @@ glm::ivec3 clipmap_texel(const ClipmapInfo& info, glm::ivec3 window, int level) 
   return {wrapped.x, wrapped.y, wrapped.z + level * r};
 }
 
+glm::vec4 faces_texel(const std::vector<std::pair<int, uint32_t>>& groups) {
+  glm::uvec4 faces(0u);
+  for (const auto& [g, steps] : groups) {
+    // The octahedral code of the axis normal of group g, 8 bits per coordinate (254 steps).
+    glm::vec3 n(0.0f);
+    n[g >> 1] = (g & 1) == 0 ? 1.0f : -1.0f;
+    glm::vec2 e(n.x, n.y);
+    if (n.z < 0.0f) e = glm::vec2(1.0f - std::abs(n.y), 1.0f - std::abs(n.x));
+    const glm::uvec2 code = glm::uvec2(glm::round((e * 0.5f + 0.5f) * 254.0f));
+    faces[g >> 1] |= (code.x | (code.y << 8)) << (16 * (g & 1));
+    faces.w |= steps << (5 * g);
+  }
+  return glm::vec4(glm::uintBitsToFloat(faces.x), glm::uintBitsToFloat(faces.y),
+                   glm::uintBitsToFloat(faces.z), glm::uintBitsToFloat(faces.w));
+}
+
 ClipmapInfo make_clipmap_info(int resolution, int levels, float base_voxel, glm::vec3 centre,
                               glm::vec3 anchor) {
   ClipmapInfo info{};

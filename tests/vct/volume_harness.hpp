@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/gpu/shader_compiler.hpp"
@@ -53,6 +54,10 @@ glm::ivec3 clipmap_texel(const ClipmapInfo& info, glm::ivec3 window, int level);
 // snapped to whole voxels (origin_voxel = round(centre / size) - R/2).
 ClipmapInfo make_clipmap_info(int resolution, int levels, float base_voxel, glm::vec3 centre,
                               glm::vec3 anchor = glm::vec3(0.0f));
+
+// A faces texel (contracts/voxel_volumes.glsl) of axis-aligned groups, as CpuClipmap holds an
+// integer texel: (group 0..5 = +X, -X, +Y, -Y, +Z, -Z, area share in 31sts).
+glm::vec4 faces_texel(const std::vector<std::pair<int, uint32_t>>& groups);
 
 // What "vcttest.volumes" uploads. Bump `version` after a change to upload again; otherwise
 // the pass skips (so downstream skip logic can be tested).

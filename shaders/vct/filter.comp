@@ -159,7 +159,8 @@ vec4 filter_children(int volume, ivec3 child[8], bool own[8]) {
   for (int i = 0; i < 8; ++i) {
     c[i] = load_src(volume, child[i]);
 #if FACE_FACING && ANISOTROPIC
-    if (own[i] && c[i].a > 0.0) {
+    // Only a child that has light needs its faces (most voxels are dark or empty).
+    if (own[i] && any(greaterThan(c[i].rgb, vec3(0.0)))) {
       c[i].rgb *= volume_facing(texelFetch(voxel_faces, child[i], 0), volume);
     }
 #endif

@@ -9,9 +9,9 @@
 //   Every filtered volume is a clipmap with the addressing of contracts/voxel_clipmap.glsl (same R,
 //   L, toroidal origin) and a full mip chain: mip m holds, per level l, R>>m voxels per edge at
 //   z in [l*(R>>m), (l+1)*(R>>m)). Texel m of world voxel w is (w >> m) mod (R >> m).
-//   The optical-depth form of contracts/vct_volume_encoding.glsl: a = optical depth tau of one
-//   voxel length at that level and mip, rgb = radiance x tau / VCT_MAX_OPTICAL_DEPTH. (The
-//   filter's own arithmetic is in premultiplied radiance and opacity; see that file for why.)
+//   The form of contracts/vct_volume_encoding.glsl: premultiplied radiance and opacity of one
+//   voxel length at that level and mip. The tracer filters it across a cone's travel as stored
+//   and along the travel as optical depth (vct_fetch_along; that file says why).
 //   Mip m of level l is the filter of mip m-1; mip 0 of level l > 0 is,
 //   where level l-1 covers it, the filter of level l-1's mip 0 (so the levels agree), and
 //   elsewhere the injected radiance of level l.
@@ -87,11 +87,10 @@ layout(set = VCT_VOLUME_SET, binding = VCT_VOLUME_BINDING) uniform sampler3D
 
 const float VCT_PI = 3.14159265358979323846;
 
-// One level and mip of a filtered volume at anchor-relative position p, trilinear: x and y by
-// the sampler (REPEAT = toroidal wrap), z between two slices of this level by hand.
-vec4 vct_fetch(sampler3D volume, vec3 p, int level, int mip) {
+// Continuous texel coordinate of anchor-relative p in `level`'s mip `mip` (texel centres at
+// i + 0.5; x and y before the toroidal wrap, z within the level's slab of r slices).
+vec3 vct_texel_coord(vec3 p, int level, int mip) {
   int r = voxel_resolution() >> mip;
-  int levels = voxel_level_count();
   ivec3 origin = voxel_clipmap.levels[level].origin_voxel.xyz;
   // Continuous world-voxel coordinate at this mip, split into an integer part kept exact and
   // a small fraction, so that scenes far from the origin keep precision.
@@ -99,35 +98,78 @@ vec4 vct_fetch(sampler3D volume, vec3 p, int level, int mip) {
   vec3 remainder = vec3(origin - (origin_mip << mip));
   vec3 fraction = (voxel_window_coord(p, level) + remainder) / float(1 << mip);
   ivec3 base = origin_mip & (r - 1);  // floor modulo: r is a power of two
-  vec3 texel = vec3(base) + fraction;
+  return vec3(base) + fraction;
+}
+
+// One layer of texels across a cone's travel along `axis`: texel coordinate `texel`
+// (vct_texel_coord) with the axis's coordinate at that layer's centre, filtered across (the
+// sampler in x and y, z by hand between two slices of the level).
+vec4 vct_fetch_layer(sampler3D volume, vec3 texel, int level, int mip) {
+  int r = voxel_resolution() >> mip;
   float z = texel.z - 0.5;
   float z0 = floor(z);
-  float wz = z - z0;
   int s0 = int(z0) & (r - 1);
-  int s1 = (s0 + 1) & (r - 1);
-  float depth = float(r * levels);
   vec2 xy = texel.xy / float(r);  // REPEAT wraps
-  float lod = float(mip);
-  vec3 c0 = vec3(xy, (float(level * r + s0) + 0.5) / depth);
-  vec3 c1 = vec3(xy, (float(level * r + s1) + 0.5) / depth);
-  vec4 a = textureLod(volume, c0, lod);
-  vec4 b = textureLod(volume, c1, lod);
+  float depth = float(r * voxel_level_count());
+  vec4 a = textureLod(volume, vec3(xy, (float(level * r + s0) + 0.5) / depth), float(mip));
+  float wz = z - z0;
+  if (!(wz > 0.0)) return a;
+  int s1 = (s0 + 1) & (r - 1);
+  vec4 b = textureLod(volume, vec3(xy, (float(level * r + s1) + 0.5) / depth), float(mip));
   return mix(a, b, wz);
 }
 
-#if VCT_ANISOTROPIC
-vec4 vct_fetch_directional(vec3 p, vec3 dir, int level, int mip) {
-  // Face weights dir^2 sum to 1, so a uniform medium is returned unchanged (docs/vct.md).
-  vec3 w = dir * dir;
-  vec4 x = dir.x >= 0.0 ? vct_fetch(vct_volumes[0], p, level, mip)
-                        : vct_fetch(vct_volumes[1], p, level, mip);
-  vec4 y = dir.y >= 0.0 ? vct_fetch(vct_volumes[2], p, level, mip)
-                        : vct_fetch(vct_volumes[3], p, level, mip);
-  vec4 z = dir.z >= 0.0 ? vct_fetch(vct_volumes[4], p, level, mip)
-                        : vct_fetch(vct_volumes[5], p, level, mip);
-  return w.x * x + w.y * y + w.z * z;
+// One level and mip of a volume at anchor-relative position p, trilinear as the hardware
+// filters (the voxel normals of the facing test).
+vec4 vct_fetch(sampler3D volume, vec3 p, int level, int mip) {
+  return vct_fetch_layer(volume, vct_texel_coord(p, level, mip), level, mip);
 }
+
+// A volume as a cone travelling along `axis` (0, 1, 2) sees it at p, in the form that adds
+// along a ray (optical depth; contracts/vct_volume_encoding.glsl explains why): the two layers
+// of texels that straddle p along the travel, each filtered across it in premultiplied
+// opacity, then their optical depths interpolated along it.
+vec4 vct_fetch_along(sampler3D volume, vec3 p, int level, int mip, int axis) {
+  vec3 texel = vct_texel_coord(p, level, mip);
+  float along = texel[axis] - 0.5;
+  float first = floor(along);
+  float w = along - first;
+  vec3 t0 = texel;
+  t0[axis] = first + 0.5;
+  vec4 a = vct_optical_depth(vct_fetch_layer(volume, t0, level, mip));
+  if (!(w > 0.0)) return a;
+  vec3 t1 = texel;
+  t1[axis] = first + 1.5;
+  vec4 b = vct_optical_depth(vct_fetch_layer(volume, t1, level, mip));
+  return mix(a, b, w);
+}
+
+// A volume read by a cone travelling along dir: the volumes of its three axes weighted dir^2
+// (they sum to 1, so a uniform medium is returned unchanged; docs/vct.md). Anisotropic: the
+// axis's volume for the sign of dir along it; isotropic: the one volume along every axis.
+vec4 vct_fetch_directional(vec3 p, vec3 dir, int level, int mip) {
+  vec3 w = dir * dir;
+  vec4 sum = vec4(0.0);
+#if VCT_ANISOTROPIC
+  if (w.x > 0.0) {
+    sum += w.x * (dir.x >= 0.0 ? vct_fetch_along(vct_volumes[0], p, level, mip, 0)
+                               : vct_fetch_along(vct_volumes[1], p, level, mip, 0));
+  }
+  if (w.y > 0.0) {
+    sum += w.y * (dir.y >= 0.0 ? vct_fetch_along(vct_volumes[2], p, level, mip, 1)
+                               : vct_fetch_along(vct_volumes[3], p, level, mip, 1));
+  }
+  if (w.z > 0.0) {
+    sum += w.z * (dir.z >= 0.0 ? vct_fetch_along(vct_volumes[4], p, level, mip, 2)
+                               : vct_fetch_along(vct_volumes[5], p, level, mip, 2));
+  }
+#else
+  for (int k = 0; k < 3; ++k) {
+    if (w[k] > 0.0) sum += w[k] * vct_fetch_along(vct_volumes[0], p, level, mip, k);
+  }
 #endif
+  return sum;
+}
 
 #ifdef VCT_FACING_NORMALS
 // How much of a voxel's light a cone travelling along dir receives: a surface sends light only
@@ -156,11 +198,7 @@ vec4 vct_fetch_lod(vec3 p, vec3 dir, int k, int finest) {
   int level = min(k, voxel_level_count() - 1);
   int mip = k - level;
   if (!voxel_level_valid(level)) return vec4(0.0);
-#if VCT_ANISOTROPIC
   vec4 v = vct_fetch_directional(p, dir, level, mip);
-#else
-  vec4 v = vct_fetch(vct_volumes[0], p, level, mip);
-#endif
 #ifdef VCT_FACING_NORMALS
   // Only samples that carry light need the normals (most of a cone's samples are empty space).
   if (mip == 0 && level == finest && any(greaterThan(v.rgb, vec3(0.0)))) {

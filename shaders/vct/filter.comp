@@ -12,9 +12,8 @@
 // front-to-back composite of each child pair along the axis, averaged over the 4 columns; with
 // the voxels' faces (FACE_FACING), a child that holds its own injected light enters the
 // composite of a direction without the light of its surfaces that face away from it.
-// NaN/Inf and out-of-range values are scrubbed when read. The filter works on premultiplied
-// radiance and opacity; what it stores is the optical-depth form of
-// contracts/vct_volume_encoding.glsl.
+// NaN/Inf and out-of-range values are scrubbed when read. The filter works on, and stores,
+// premultiplied radiance and opacity (contracts/vct_volume_encoding.glsl).
 #include "lib/common.glsl"
 #include "contracts/vct_volume_encoding.glsl"
 #include "contracts/voxel_volumes.glsl"
@@ -75,11 +74,8 @@ vec4 scrub(vec4 v) {
   return vec4(sanitize_radiance(v.rgb), a);
 }
 
-// A stored value (contracts/vct_volume_encoding.glsl) with NaN/Inf removed, depth within range.
-vec4 scrub_stored(vec4 v) {
-  float tau = isnan(v.a) || isinf(v.a) ? 0.0 : clamp(v.a, 0.0, VCT_MAX_OPTICAL_DEPTH);
-  return vec4(sanitize_radiance(v.rgb), tau);
-}
+// A stored value (contracts/vct_volume_encoding.glsl) with NaN/Inf removed.
+vec4 scrub_stored(vec4 v) { return scrub(v); }
 
 vec4 load_src(int volume, ivec3 texel) {
   vec4 v;

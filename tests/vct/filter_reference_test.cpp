@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -51,14 +52,12 @@ glm::vec4 filter_children(const glm::vec4 c[8], int volume, bool anisotropic) {
   return sum / 4.0f;
 }
 
-// Premultiplied radiance and opacity from the filter's stored optical-depth form
-// (shaders/contracts/vct_volume_encoding.glsl: a = tau, rgb = radiance x tau / 8).
+// Premultiplied radiance and opacity from the filter's stored form
+// (shaders/contracts/vct_volume_encoding.glsl: the same, opacity clamped to [0, 1]).
 glm::vec4 decode_filtered(glm::vec4 stored) {
-  constexpr float kMaxOpticalDepth = 8.0f;
-  const float tau = std::max(stored.a, 0.0f);
-  if (!(tau > 1e-7f)) return glm::vec4(0.0f);
-  const float a = 1.0f - std::exp(-tau);
-  return glm::vec4(glm::max(glm::vec3(stored), glm::vec3(0.0f)) * (kMaxOpticalDepth / tau) * a, a);
+  const float a = std::clamp(stored.a, 0.0f, 1.0f);
+  if (!(a > 0.0f)) return glm::vec4(0.0f);
+  return glm::vec4(glm::max(glm::vec3(stored), glm::vec3(0.0f)), a);
 }
 
 // volumes[v][mip]: texels of the whole stacked image at that mip.

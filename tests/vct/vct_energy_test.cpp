@@ -175,11 +175,11 @@ double floor_under_an_emitter_mean_indirect(uint32_t size, const EmitterPlacemen
 }
 
 // End to end through the voxelization of an emitter, its injection as emission, the filter and
-// the gather: the near field of a small emitter. Measured with the default 6 cones: 1.6x the
-// closed form at 32^3 and 1.4x at 64^3 (1.3x at 128^3), nearly the same from 4 to 32 cones, where
-// an emitter as wide as the floor's view (0.8 m at the same height) is 1.09x. Held to that for
-// now, from both sides, so that the excess cannot grow unseen; the target is 10%
-// (docs/error-budget.md, fourth round).
+// the gather: the near field of a small emitter. Measured with the default 6 cones: 1.23x the
+// closed form at 32^3 and 1.13x at 64^3. It was 1.63x and 1.45x while the gather interpolated
+// optical depth across a cone's travel too, which made a texel half covered by the emitter
+// nearly opaque and every emitter a voxel wider on each side (docs/error-budget.md, eleventh
+// round). Held from both sides so that the excess cannot grow unseen; the target is 10%.
 TEST_F(GpuTest, FloorUnderAnEmittingSquare) {
   const double expected = floor_under_an_emitter_mean_indirect(kEnergyBoundImageSize);
   for (uint32_t resolution : {32u, 64u}) {
@@ -189,7 +189,7 @@ TEST_F(GpuTest, FloorUnderAnEmittingSquare) {
     std::printf("[emitting square] vct %u^3: %.5f against the closed form %.5f, ratio %.4f\n",
                 resolution, rendered, expected, ratio);
     EXPECT_GT(ratio, 0.9) << resolution;
-    EXPECT_LT(ratio, 1.75) << resolution;
+    EXPECT_LT(ratio, 1.35) << resolution;
   }
 }
 
@@ -198,9 +198,9 @@ TEST_F(GpuTest, FloorUnderAnEmittingSquare) {
 // and took light that comes from high above away from every receiver: under this wide emitter
 // 4 lanes gathered 0.960 / 0.971 of the axis alone at 4 / 6 cones, and the Cornell boxes were 5
 // to 15 points darker (docs/error-budget.md, fifth round); lanes at the axis's elevation
-// gather 0.997 / 1.000 of it. The closed form itself is exceeded (1.26x at 32^3) by the same
-// spread of optical depth across the ray that makes the small square too bright (above); held
-// from both sides for now so that it cannot grow unseen.
+// gather 0.997 / 1.000 of it. The closed form itself is exceeded (1.11x at 32^3; 1.26x while
+// optical depth was interpolated across the cones' travel, as for the small square above);
+// held from both sides so that it cannot grow unseen.
 TEST_F(GpuTest, ConeLanesKeepTheAxisElevation) {
   const double expected = floor_under_an_emitter_mean_indirect(kEnergyBoundImageSize, kWideEmitter);
   RenderHarness harness(voxel_gi_render_setup(
@@ -221,7 +221,7 @@ TEST_F(GpuTest, ConeLanesKeepTheAxisElevation) {
     EXPECT_NEAR(mean[1] / mean[0], 1.0, 0.015) << cones << " cones";
     for (double m : mean) {
       EXPECT_GT(m / expected, 0.9) << cones << " cones";
-      EXPECT_LT(m / expected, 1.35) << cones << " cones";
+      EXPECT_LT(m / expected, 1.2) << cones << " cones";
     }
   }
 }

@@ -1,8 +1,8 @@
 #ifndef VOXGI_VCT_VOLUME_ENCODING_GLSL
 #define VOXGI_VCT_VOLUME_ENCODING_GLSL
 // Contract: how vct.filter's volumes store a voxel, shared by the filter (which composites in
-// premultiplied-radiance / opacity form and converts when it stores and loads) and the cone
-// tracers of every family (which read the stored form through hardware trilinear filtering).
+// premultiplied-radiance / opacity form, the stored form) and the cone tracers of every family
+// (which filter it across a cone's travel in hardware and convert it along the travel, below).
 // No bindings.
 //
 // Stored: premultiplied radiance and opacity of one voxel length, (L * a, a), a in [0, 1].

@@ -29,12 +29,8 @@ vec4 vct_encode_volume(vec4 premultiplied) {
   return vec4(max(premultiplied.rgb, vec3(0.0)), a);
 }
 
-// Back to premultiplied radiance and opacity.
-vec4 vct_decode_volume(vec4 stored) {
-  float a = clamp(stored.a, 0.0, 1.0);
-  if (!(a > 0.0)) return vec4(0.0);
-  return vec4(max(stored.rgb, vec3(0.0)), a);
-}
+// Back to premultiplied radiance and opacity: the stored form is that form, kept in range.
+vec4 vct_decode_volume(vec4 stored) { return vct_encode_volume(stored); }
 
 // Premultiplied radiance and opacity of one voxel length to the form that adds along a ray:
 // a = tau = -ln(1 - opacity) (at most VCT_MAX_OPTICAL_DEPTH), rgb = L * tau /

@@ -74,9 +74,6 @@ vec4 scrub(vec4 v) {
   return vec4(sanitize_radiance(v.rgb), a);
 }
 
-// A stored value (contracts/vct_volume_encoding.glsl) with NaN/Inf removed.
-vec4 scrub_stored(vec4 v) { return scrub(v); }
-
 vec4 load_src(int volume, ivec3 texel) {
   vec4 v;
 #if ANISOTROPIC
@@ -91,7 +88,7 @@ vec4 load_src(int volume, ivec3 texel) {
 #else
   v = imageLoad(src0, texel);
 #endif
-  return scrub(vct_decode_volume(scrub_stored(v)));
+  return vct_decode_volume(scrub(v));
 }
 
 void store_dst(int volume, ivec3 texel, vec4 v) {

@@ -13,7 +13,7 @@ double auto_voxel_size(double scene_extent, uint32_t resolution, uint32_t levels
   const double sure = std::max(1.0, r / 2.0 - 2.0);
   const double for_reach = std::isfinite(reach) && reach > 0.0 ? reach / sure : 0.0;
   if (levels <= 1) return std::max(extent / std::max(1.0, r - 4.0), for_reach);
-  const double coarsest = std::max(2.0 * extent / std::max(1.0, r / 2.0 - 1.0), for_reach);
+  const double coarsest = std::max(extent / sure, for_reach);
   return coarsest / std::ldexp(1.0, static_cast<int>(levels) - 1);
 }
 
@@ -22,6 +22,14 @@ double window_reach(const glm::dvec3& center, const glm::dvec3& scene_min,
   const glm::dvec3 far = glm::max(glm::abs(center - scene_min), glm::abs(scene_max - center));
   const double reach = std::max({far.x, far.y, far.z});
   return std::isfinite(reach) ? reach : 0.0;
+}
+
+glm::dvec3 window_center_in_scene(const glm::dvec3& camera, const glm::dvec3& scene_min,
+                                  const glm::dvec3& scene_max) {
+  const bool bounded = glm::all(glm::lessThanEqual(scene_min, scene_max)) &&
+                       glm::all(glm::lessThan(glm::abs(scene_min), glm::dvec3(1e300))) &&
+                       glm::all(glm::lessThan(glm::abs(scene_max), glm::dvec3(1e300)));
+  return bounded ? glm::clamp(camera, scene_min, scene_max) : camera;
 }
 
 glm::dvec3 snap_anchor(const glm::dvec3& point, double coarsest_voxel_size) {

@@ -30,14 +30,13 @@ struct WorldBox {
 
 // Level-0 voxel edge chosen when the parameter is 0. With one level the window is fitted to
 // the scene: R - 4 voxels span the largest scene side (two voxels of margin each side, one of
-// which the window snapping may take). With L levels the coarsest level's half-width
-// (R/2 - 1 voxels) spans twice the largest side, so the whole scene stays inside the coarsest
-// level while the camera is within one scene extent of the scene bounds. Either way the
-// coarsest level is made large enough that R/2 - 2 of its voxels (what is left on each side of
-// the window centre after the snapping and the consumers' one-voxel margin) span `reach`, the
-// distance from the first window centre to the farthest scene-bounds face (window_reach): a
-// camera-centred window then holds the whole scene from where the camera starts, however far
-// outside the scene it is. Empty scenes (and single points) use a 1 m side.
+// which the window snapping may take). With L levels the coarsest level's half-width spans the
+// largest side: windows that follow the camera centre on a point inside the scene bounds
+// (window_center_in_scene), so the whole scene then stays inside the coarsest level wherever
+// the camera goes. Either way the coarsest level is made large enough that R/2 - 2 of its
+// voxels (what is left on each side of the window centre after the snapping and the consumers'
+// one-voxel margin) span `reach`, the distance from the first window centre to the farthest
+// scene-bounds face (window_reach). Empty scenes (and single points) use a 1 m side.
 double auto_voxel_size(double scene_extent, uint32_t resolution, uint32_t levels,
                        double reach = 0.0);
 
@@ -45,6 +44,14 @@ double auto_voxel_size(double scene_extent, uint32_t resolution, uint32_t levels
 // scene_max]: the half-width a window centred there needs to contain the box (0 if not finite).
 double window_reach(const glm::dvec3& center, const glm::dvec3& scene_min,
                     const glm::dvec3& scene_max);
+
+// Where windows that follow the camera centre: the camera clamped into the scene bounds. A
+// level's window centred there holds every scene point that the same window centred on the
+// camera would hold (per axis, a point inside the bounds is no farther from the clamped centre
+// than from the camera), so a camera outside the scene no longer spends its finest levels on
+// empty space in front of it. The camera itself where the bounds are empty or not finite.
+glm::dvec3 window_center_in_scene(const glm::dvec3& camera, const glm::dvec3& scene_min,
+                                  const glm::dvec3& scene_max);
 
 // The anchor: `point` snapped to the grid of twice the coarsest voxel edge, so that every
 // level's window corner (an even number of its voxels from the anchor) lies on every coarser

@@ -344,7 +344,8 @@ class VoxelizePass final : public graph::Pass {
     const glm::vec4 camera = ctx.frame().uniforms.camera_position;
     const bool finite =
         std::isfinite(camera.x) && std::isfinite(camera.y) && std::isfinite(camera.z);
-    return finite ? glm::dvec3(camera.x, camera.y, camera.z) : scene_center_;
+    if (!finite) return scene_center_;
+    return window_center_in_scene(glm::dvec3(camera.x, camera.y, camera.z), scene_min_, scene_max_);
   }
 
   // Far from the anchor the integer voxel origins would overflow: start over around the camera.
@@ -366,7 +367,9 @@ class VoxelizePass final : public graph::Pass {
     const scene::Scene& scene = ctx.scene();
     glm::vec3 mn, mx;
     scene.bounds(mn, mx);
-    scene_center_ = 0.5 * (glm::dvec3(mn) + glm::dvec3(mx));
+    scene_min_ = glm::dvec3(mn);
+    scene_max_ = glm::dvec3(mx);
+    scene_center_ = 0.5 * (scene_min_ + scene_max_);
     const glm::dvec3 side = glm::dvec3(mx) - glm::dvec3(mn);
     const double extent = std::max({side.x, side.y, side.z});
     if (!initialized_) {  // re-anchoring far away keeps the voxel size
@@ -518,6 +521,7 @@ class VoxelizePass final : public graph::Pass {
   double voxel_size_ = 1.0;
   glm::vec3 anchor_f_{0.0f};
   glm::dvec3 anchor_{0.0}, scene_center_{0.0};
+  glm::dvec3 scene_min_{0.0}, scene_max_{0.0};  // bounds at initialization (window_center)
   std::vector<glm::ivec3> origins_;
   std::vector<bool> valid_;
   std::vector<DynamicInstance> dynamic_;
@@ -614,8 +618,8 @@ void register_voxelize(graph::Registry& registry) {
        1e5,
        {},
        "level-0 voxel edge (m); 0 = automatic: one level fits the scene bounds, L levels make "
-       "the coarsest level's half-width span twice the scene's largest side; windows that "
-       "follow the camera also reach from its first position to the far side of the scene",
+       "the coarsest level's half-width span the scene's largest side (windows that follow the "
+       "camera centre on it clamped into the scene bounds)",
        false},
       {"strategy",
        graph::ParamType::Enum,
@@ -653,7 +657,9 @@ void register_voxelize(graph::Registry& registry) {
        0.0,
        2.0,
        {"auto", "camera", "scene"},
-       "what the windows centre on: auto = the scene for one level, the camera for several",
+       "what the windows centre on: auto = the scene for one level, the camera for several; "
+       "camera = the camera clamped into the scene bounds (a camera outside the scene centres "
+       "on the nearest point of its bounds, where the finest levels hold what it sees)",
        false},
   };
   graph::set_size_rule(info, "clipmap_info", [](const graph::SizeQuery&) {

@@ -74,9 +74,10 @@ TEST(VoxelClipmapWindow, LevelsStayNestedOnCoarserGrids) {
   }
 }
 
-// Camera-centred windows of the automatic voxel size hold the whole scene, with the one-voxel
-// margin of the consumers, from any starting camera (here up to five scene sizes outside).
-TEST(VoxelClipmapWindow, AutomaticSizeHoldsTheSceneFromTheStartingCamera) {
+// Windows that follow the camera, of the automatic voxel size, hold the whole scene with the
+// one-voxel margin of the consumers wherever the camera is (here up to five scene sizes
+// outside): they centre on the camera clamped into the scene bounds.
+TEST(VoxelClipmapWindow, AutomaticSizeHoldsTheSceneFromAnyCamera) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int trial = 0; trial < 300; ++trial) {
@@ -86,14 +87,15 @@ TEST(VoxelClipmapWindow, AutomaticSizeHoldsTheSceneFromTheStartingCamera) {
     const double extent = std::max({side.x, side.y, side.z});
     const glm::dvec3 camera =
         scene_min + glm::dvec3(unit(rng), unit(rng), unit(rng)) * (11.0 * extent) - 5.0 * extent;
+    const glm::dvec3 center = passes::common::window_center_in_scene(camera, scene_min, scene_max);
     for (uint32_t r : {16u, 32u, 128u}) {
       for (uint32_t levels : {1u, 3u, 6u}) {
-        const double reach = passes::common::window_reach(camera, scene_min, scene_max);
+        const double reach = passes::common::window_reach(center, scene_min, scene_max);
         const double coarsest = passes::common::auto_voxel_size(extent, r, levels, reach) *
                                 std::ldexp(1.0, int(levels) - 1);
         const glm::dvec3 anchor =
             passes::common::snap_anchor(0.5 * (scene_min + scene_max), coarsest);
-        const glm::ivec3 origin = window_origin(camera - anchor, coarsest, r);
+        const glm::ivec3 origin = window_origin(center - anchor, coarsest, r);
         const glm::dvec3 lo = (scene_min - anchor) / coarsest - glm::dvec3(origin);
         const glm::dvec3 hi = (scene_max - anchor) / coarsest - glm::dvec3(origin);
         for (int a = 0; a < 3; ++a) {
@@ -103,6 +105,36 @@ TEST(VoxelClipmapWindow, AutomaticSizeHoldsTheSceneFromTheStartingCamera) {
       }
     }
   }
+}
+
+// Centring on the camera clamped into the scene bounds loses nothing: every scene point within
+// a level's half-width of the camera is within it of the clamped centre, and a camera outside
+// the scene brings scene points into the finer levels.
+TEST(VoxelClipmapWindow, ClampedCentreHoldsEveryScenePointTheCameraWindowHeld) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const glm::dvec3 scene_min(-1.0, 0.0, 2.0), scene_max(3.0, 1.5, 2.5);
+  int gained = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const glm::dvec3 camera = glm::dvec3(unit(rng), unit(rng), unit(rng)) * 12.0 - 4.0;
+    const glm::dvec3 center = passes::common::window_center_in_scene(camera, scene_min, scene_max);
+    const glm::dvec3 point =
+        glm::mix(scene_min, scene_max, glm::dvec3(unit(rng), unit(rng), unit(rng)));
+    const auto chebyshev = [](const glm::dvec3& d) {
+      return std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    };
+    const double from_camera = chebyshev(point - camera);
+    const double from_center = chebyshev(point - center);
+    ASSERT_LE(from_center, from_camera + 1e-12) << "trial " << trial;
+    if (from_center < 0.5 * from_camera) ++gained;
+  }
+  EXPECT_GT(gained, 100);
+  // Inside the bounds the camera itself is the centre; empty bounds leave the camera.
+  EXPECT_EQ(passes::common::window_center_in_scene({0.5, 1.0, 2.2}, scene_min, scene_max),
+            glm::dvec3(0.5, 1.0, 2.2));
+  EXPECT_EQ(passes::common::window_center_in_scene({7.0, 1.0, 2.2}, glm::dvec3(INFINITY),
+                                                   glm::dvec3(-INFINITY)),
+            glm::dvec3(7.0, 1.0, 2.2));
 }
 
 TEST(VoxelClipmapWindow, SplitAndMergeKeepEveryVoxel) {

@@ -31,7 +31,9 @@ struct ContextOptions {
 };
 
 // Every linear kind also filters linearly between mips (so textureLod works on mip chains);
-// the *Mipmapped kinds add anisotropic filtering where the device has it.
+// the *Mipmapped kinds add anisotropic filtering where the device has it, which lavapipe
+// applies even at an explicit LOD (taps around the sample), so lookups that mean one
+// trilinear footprint (the voxel volumes) must not use them.
 enum class SamplerKind {
   LinearClamp,
   LinearRepeat,

@@ -63,7 +63,12 @@ class VoxelBouncePass final : public graph::Pass {
     VkCommandBuffer cmd = ctx.cmd();
     gpu::Context& gpu = ctx.gpu();
     const VkSampler nearest = gpu.sampler(gpu::SamplerKind::NearestClamp);
-    const VkSampler repeat = gpu.sampler(gpu::SamplerKind::LinearRepeatMipmapped);
+    // The volumes' sampler of the cone-trace contract (no anisotropic filtering): a mipmapped
+    // sampler with anisotropy took extra taps around every explicit-LOD sample on lavapipe,
+    // which widened each footprint and left the voxel bounces at 0.73 of the path tracer's on
+    // the Cornell box (docs/error-budget.md, thirteenth round).
+    if (!sampler_) sampler_ = std::make_unique<contracts::VolumeSampler>(gpu);
+    const VkSampler repeat = sampler_->handle();
     const graph::BoundResource& out = ctx.resource("radiance");
 
     gpu::DescriptorWriter writer;
@@ -105,6 +110,7 @@ class VoxelBouncePass final : public graph::Pass {
   bool anisotropic_ = false;
   graph::InputVersions inputs_{{"clipmap_info", "albedo", "normal", "direct"}};
   std::optional<gpu::ComputePipeline> pipeline_;
+  std::unique_ptr<contracts::VolumeSampler> sampler_;
 };
 
 graph::SlotSpec filtered_input(const char* name, std::string doc) {

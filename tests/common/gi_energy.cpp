@@ -510,8 +510,13 @@ std::vector<EnergyBoundScene> energy_bound_scenes() {
   // of their surfaces facing it). Lighting a voxel's faces one by one left it there, so the two
   // faces of the 1 mm wall, which straddle a voxel face, fall in different voxels; the excess has
   // another cause, not yet found (docs/error-budget.md, "What is left").
-  return {{"cornell_point_light", cornell_lit_by_its_point_light, 0.20},
-          {"thin_wall", [] { return thin_wall(); }, 1.0}};
+  // The voxel bounces of dvs on the Cornell box add 0.89 to 1.01 of what the path tracer's next
+  // bounce adds (0.49 to 0.80 while they sampled the volumes with anisotropic filtering,
+  // docs/error-budget.md, thirteenth round). On the thin wall they add 1.8 to 3.4 times what
+  // the path tracer's second and third bounces add, the same excess fed back, and those are
+  // within their noise of zero.
+  return {{"cornell_point_light", cornell_lit_by_its_point_light, 0.20, 0.20},
+          {"thin_wall", [] { return thin_wall(); }, 1.0, 2.5}};
 }
 
 void expect_within_energy_bound(const std::string& label, double rendered,

@@ -310,6 +310,9 @@ struct EnergyBoundScene {
   const char* name;
   scene::Scene (*make)();
   double tolerance = kEnergyBoundTolerance;
+  // How far what one voxel bounce of a feedback loop (dvs) adds may stray from what the path
+  // tracer's next bounce adds, as a share of the latter, either way.
+  double feedback_tolerance = kEnergyBoundTolerance;
 };
 // The Cornell box lit by its point light, and a thin wall between a lit and a dark floor.
 std::vector<EnergyBoundScene> energy_bound_scenes();

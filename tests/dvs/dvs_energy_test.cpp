@@ -34,16 +34,14 @@ TEST_P(DvsAnalyticTest, ReceiverUnderASquareGetsNoLightThroughIt) {
   expect_unlit_underside_sends_nothing(dvs_gi_setup(GetParam(), 0), SquareLight::Directional);
 }
 
-// Measured at 32^3: 0.999 / 0.954 / 0.893 of the radiosity solution for 0 / 1 / 2 voxel bounces
-// (1.005 / 0.973 / 0.925 before cones read opacity across their travel as coverage,
-// docs/error-budget.md, eleventh round). The per-pixel gather of the same box did not move
-// (vct, 1.00); each per-voxel gather now keeps about 2% less, a cause not yet found, so the
-// tolerance of the two-bounce case at 32^3 is 12% until it is.
+// Measured at 32^3: 0.999 / 0.981 / 0.960 of the radiosity solution for 0 / 1 / 2 voxel bounces,
+// at 64^3 0.995 / 0.976 / 0.955. (Until the voxel bounces sampled the volumes with the
+// contract's sampler the two-bounce case was 0.893 at 32^3: anisotropic filtering on lavapipe
+// widened every per-voxel sample; docs/error-budget.md, thirteenth round.)
 TEST_P(DvsAnalyticTest, ClosedBoxUnderAPointLightPerBounce) {
   const BoxRadiosity radiosity(12, 3);
   for (int bounces = 0; bounces <= 2; ++bounces) {
-    const double tolerance = GetParam() == 32u && bounces == 2 ? 0.12 : 0.1;
-    expect_lit_box_matches_radiosity(dvs_gi_setup(GetParam(), bounces), radiosity, tolerance);
+    expect_lit_box_matches_radiosity(dvs_gi_setup(GetParam(), bounces), radiosity, 0.1);
   }
 }
 
@@ -60,9 +58,9 @@ class DvsEnergyBoundTest : public GpuTest,
 constexpr int kMaxVoxelBounces = 3;
 
 // K voxel bounces hold K + 1 indirect bounces. Each K stays within the path tracer limited to
-// K + 1 indirect bounces, and what the K-th voxel bounce adds stays within what the path
-// tracer's (K + 1)-th indirect bounce adds (the feedback is no stronger than the light's):
-// the scene's tolerance (10%, or its stated excess) of that gain plus two standard errors of the
+// K + 1 indirect bounces, and what the K-th voxel bounce adds stays within the scene's
+// feedback tolerance of what the path tracer's (K + 1)-th indirect bounce adds, either way
+// (the feedback is no stronger than the light's, and no weaker), plus two standard errors of the
 // difference of the two path-traced means (taken as independent, which overstates the noise of
 // paths that share their seeds).
 TEST_P(DvsEnergyBoundTest, EveryBounceStaysWithinThePathTracer) {
@@ -87,7 +85,8 @@ TEST_P(DvsEnergyBoundTest, EveryBounceStaysWithinThePathTracer) {
         "[bounce gain] %s: voxel bounce %d adds %.5f, path tracer %.5f (+- %.5f), "
         "ratio %.4f\n",
         label.c_str(), k, gain, reference_gain, noise, gain / reference_gain);
-    EXPECT_LE(gain, (1.0 + bound_scene.tolerance) * reference_gain + noise) << label;
+    EXPECT_LE(gain, (1.0 + bound_scene.feedback_tolerance) * reference_gain + noise) << label;
+    EXPECT_GE(gain, (1.0 - bound_scene.feedback_tolerance) * reference_gain - noise) << label;
   }
 }
 

@@ -37,6 +37,12 @@ glm::dvec3 snap_anchor(const glm::dvec3& point, double coarsest_voxel_size) {
   return glm::floor(point / cell + 0.5) * cell;
 }
 
+glm::dvec3 fixed_window_anchor(const glm::dvec3& point, double coarsest_voxel_size,
+                               uint32_t resolution) {
+  return snap_anchor(point, coarsest_voxel_size) -
+         glm::dvec3(0.5 * static_cast<double>(resolution) * coarsest_voxel_size);
+}
+
 glm::ivec3 window_origin(const glm::dvec3& center_relative, double voxel_size,
                          uint32_t resolution) {
   const glm::dvec3 pairs = glm::floor(center_relative / (2.0 * voxel_size) + 0.5);

@@ -58,6 +58,14 @@ glm::dvec3 window_center_in_scene(const glm::dvec3& camera, const glm::dvec3& sc
 // level's grid and the levels stay nested.
 glm::dvec3 snap_anchor(const glm::dvec3& point, double coarsest_voxel_size);
 
+// The anchor of windows that stay put (one level fitted to the scene, or windows centred on
+// it): snap_anchor's moved R/2 coarsest voxels towards -x, -y, -z, so that the coarsest window
+// centred on `point` starts at voxel index 0 (window_origin), a multiple of R. Its toroidal
+// storage is then the identity, its faces are the texture's, and cone tracers read beyond it
+// as empty (shaders/contracts/cone_trace.glsl). The voxel grid and the windows do not move.
+glm::dvec3 fixed_window_anchor(const glm::dvec3& point, double coarsest_voxel_size,
+                               uint32_t resolution);
+
 // Window min corner (voxels of the level, from the anchor) of a window of R voxels centred on
 // `center_relative` (metres from the anchor): an even voxel count, so windows are nested.
 glm::ivec3 window_origin(const glm::dvec3& center_relative, double voxel_size, uint32_t resolution);

@@ -386,7 +386,8 @@ class VoxelizePass final : public graph::Pass {
     const double coarsest = level_size(levels_ - 1);
     glm::dvec3 around = scene_center_;
     if (initialized_) around = window_center(ctx);  // re-anchoring far away
-    anchor_f_ = glm::vec3(snap_anchor(around, coarsest));
+    anchor_f_ = glm::vec3(follows_camera(ctx) ? snap_anchor(around, coarsest)
+                                              : fixed_window_anchor(around, coarsest, resolution_));
     anchor_ = glm::dvec3(anchor_f_);
     initialized_ = true;
     origins_.assign(levels_, glm::ivec3(0));

@@ -103,20 +103,39 @@ vec3 vct_texel_coord(vec3 p, int level, int mip) {
 
 // One layer of texels across a cone's travel along `axis`: texel coordinate `texel`
 // (vct_texel_coord) with the axis's coordinate at that layer's centre, filtered across (the
-// sampler in x and y, z by hand between two slices of the level).
+// sampler in x and y, z by hand between two slices of the level). A level stored without the
+// wrap (voxel_level_unwrapped: windows that stay put) holds nothing beyond its window: there
+// the coordinate is clamped to the outermost texel centres and the result scaled by the
+// filter's weight inside, which is the trilinear filter with empty texels outside, exactly and
+// for free. (Wrapped, a footprint there would read the window's opposite face, so cones near a
+// fitted volume's walls kept to fine mips: relMSE 4-8% higher on the Cornell boxes' dense
+// levels and dvs; docs/error-budget.md, thirteenth round.)
 vec4 vct_fetch_layer(sampler3D volume, vec3 texel, int level, int mip) {
   int r = voxel_resolution() >> mip;
+  float inside = 1.0;
+  bool unwrapped = voxel_level_unwrapped(level);
+  if (unwrapped) {
+    vec3 weight = clamp(texel + 0.5, 0.0, 1.0) * clamp(float(r) + 0.5 - texel, 0.0, 1.0);
+    inside = weight.x * weight.y;
+    texel.xy = clamp(texel.xy, vec2(0.5), vec2(float(r) - 0.5));
+  }
   float z = texel.z - 0.5;
   float z0 = floor(z);
+  float wz = z - z0;
   int s0 = int(z0) & (r - 1);
   vec2 xy = texel.xy / float(r);  // REPEAT wraps
   float depth = float(r * voxel_level_count());
+  // Slices beyond an unwrapped window are empty: z0 = -1 or z0 + 1 = r.
+  float wa = 1.0 - wz, wb = wz;
+  if (unwrapped) {
+    wa *= float(z0 >= 0.0) * inside;
+    wb *= float(z0 + 1.0 < float(r)) * inside;
+  }
   vec4 a = textureLod(volume, vec3(xy, (float(level * r + s0) + 0.5) / depth), float(mip));
-  float wz = z - z0;
-  if (!(wz > 0.0)) return a;
+  if (!(wz > 0.0)) return wa * a;
   int s1 = (s0 + 1) & (r - 1);
   vec4 b = textureLod(volume, vec3(xy, (float(level * r + s1) + 0.5) / depth), float(mip));
-  return mix(a, b, wz);
+  return wa * a + wb * b;
 }
 
 // One level and mip of a volume at anchor-relative position p, trilinear as the hardware
@@ -220,6 +239,7 @@ float vct_max_lod() {
 // a box, from its back wall). Near the edges cones therefore sample finer mips.
 int vct_window_mip_limit(vec3 p, int level) {
   int r = voxel_resolution();
+  if (voxel_level_unwrapped(level)) return findMSB(r);  // nothing wraps: every mip in reach
   ivec3 origin = voxel_clipmap.levels[level].origin_voxel.xyz;
   vec3 window = voxel_window_coord(p, level);
   int mip = findMSB(r);

@@ -12,6 +12,8 @@
 // the slabs that entered it. Window corners are an even number of their voxels from the anchor,
 // so every level's window lies on the grid of the next coarser level (levels are nested). A
 // single level fitted to the scene (L = 1) is the dense volume of the source documents.
+// Windows that stay put start at a multiple of R (passes/common/voxel_clipmap_window.hpp,
+// fixed_window_anchor): their storage is the identity and their faces are the texture's.
 //
 // World positions are made relative to `anchor` before any voxel arithmetic so that scenes far
 // from the origin keep float precision (the CPU computes anchor-relative corners in double).
@@ -59,6 +61,13 @@ vec3 voxel_window_coord(vec3 relative_position, int level) {
 bool voxel_inside_window(vec3 window_coord) {
   return all(greaterThanEqual(window_coord, vec3(0.0))) &&
          all(lessThan(window_coord, vec3(float(voxel_resolution()))));
+}
+
+// Whether level `level` starts at a multiple of R: stored without the wrap, every mip's window
+// starting at texel 0.
+bool voxel_level_unwrapped(int level) {
+  ivec3 origin = voxel_clipmap.levels[level].origin_voxel.xyz;
+  return all(equal(origin & (voxel_resolution() - 1), ivec3(0)));
 }
 
 // Texel of the voxel at integer window coordinate `window_voxel` (0..R-1) of `level`, applying

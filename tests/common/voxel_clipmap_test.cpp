@@ -137,6 +137,43 @@ TEST(VoxelClipmapWindow, ClampedCentreHoldsEveryScenePointTheCameraWindowHeld) {
             glm::dvec3(7.0, 1.0, 2.2));
 }
 
+// Windows that stay put start at a multiple of R with the fixed-window anchor, so their storage
+// is the identity, and lie exactly where the plain anchor put them: the voxel grid is the same.
+TEST(VoxelClipmapWindow, FixedWindowsStartOnTheTextureGridWhereTheyLayBefore) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int aligned = 0, trials = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const glm::dvec3 center = glm::dvec3(unit(rng), unit(rng), unit(rng)) * 2000.0 - 1000.0;
+    const double coarsest = 0.001 + unit(rng);
+    for (uint32_t r : {8u, 32u, 128u}) {
+      for (uint32_t levels : {1u, 4u}) {
+        ++trials;
+        const glm::dvec3 plain = passes::common::snap_anchor(center, coarsest);
+        const glm::dvec3 fixed = passes::common::fixed_window_anchor(center, coarsest, r);
+        const glm::ivec3 coarse = window_origin(center - fixed, coarsest, r);
+        if (glm::all(glm::equal(coarse, glm::ivec3(0)))) ++aligned;
+        for (uint32_t l = 0; l < levels; ++l) {
+          const double size = coarsest / std::ldexp(1.0, int(levels - 1 - l));
+          const glm::dvec3 before =
+              plain + glm::dvec3(window_origin(center - plain, size, r)) * size;
+          const glm::dvec3 after =
+              fixed + glm::dvec3(window_origin(center - fixed, size, r)) * size;
+          for (int a = 0; a < 3; ++a) {
+            ASSERT_NEAR(after[a], before[a], 1e-9 * (1.0 + std::abs(before[a])))
+                << "trial " << trial << " R " << r << " level " << l;
+          }
+          // The anchor stays on every level's grid of window corners (even voxel counts).
+          const double steps = (plain[0] - fixed[0]) / size;
+          ASSERT_NEAR(std::remainder(steps, 2.0), 0.0, 1e-6) << "trial " << trial;
+        }
+      }
+    }
+  }
+  // Only a centre exactly halfway between two anchor cells can round the other way.
+  EXPECT_EQ(aligned, trials);
+}
+
 TEST(VoxelClipmapWindow, SplitAndMergeKeepEveryVoxel) {
   const VoxelBox box{2, {1, 2, 3}, {14, 9, 16}};
   for (int64_t budget : {7, 13, 91, 1000, 100000}) {

@@ -5,6 +5,10 @@
 
 namespace voxgi::contracts {
 
+gpu::ShaderDefine unwrapped_windows_define(uint32_t clipmap_levels) {
+  return {"VCT_UNWRAPPED_WINDOWS", clipmap_levels == 1 ? "1" : "0"};
+}
+
 VolumeSampler::VolumeSampler(gpu::Context& context) : context_(context) {
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   info.magFilter = VK_FILTER_LINEAR;

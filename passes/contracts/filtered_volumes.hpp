@@ -7,12 +7,20 @@
 #include <vulkan/vulkan.h>
 
 #include <array>
+#include <cstdint>
+
+#include "engine/gpu/shader_compiler.hpp"
 
 namespace voxgi::gpu {
 class Context;
 }
 
 namespace voxgi::contracts {
+
+// The define cone_trace.glsl needs for volumes of `clipmap_levels` levels: with one level the
+// window may be stored without the wrap (it stays put unless it follows the camera), and the
+// tracer then reads beyond it as empty; clipmaps of several levels keep the wrapped path.
+gpu::ShaderDefine unwrapped_windows_define(uint32_t clipmap_levels);
 
 // "filtered" (isotropic) or the six directional volumes, in the order +X, -X, +Y, -Y, +Z, -Z.
 inline constexpr const char* kFilteredSlot = "filtered";

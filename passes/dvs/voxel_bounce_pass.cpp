@@ -44,9 +44,11 @@ class VoxelBouncePass final : public graph::Pass {
         {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
         {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0},
     };
-    pipeline_.emplace(graph::make_pass_compute(ctx, "dvs/voxel_bounce.comp", bindings,
-                                               sizeof(BouncePush), false,
-                                               {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"}}));
+    const char* volumes = anisotropic_ ? contracts::kDirectionalSlots[0] : contracts::kFilteredSlot;
+    pipeline_.emplace(graph::make_pass_compute(
+        ctx, "dvs/voxel_bounce.comp", bindings, sizeof(BouncePush), false,
+        {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
+         contracts::unwrapped_windows_define(ctx.info(volumes).clipmap_levels)}));
     inputs_.forget();
   }
 

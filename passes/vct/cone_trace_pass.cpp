@@ -87,6 +87,9 @@ class ConeTracePass final : public graph::Pass {
         {"SHADOW_FORMAT",
          has_shadow_ ? scalar_format_qualifier(ctx.info("shadow").format) : "r16f"}};
     if (facing_) defines.push_back({"HAS_FACING", "1"});
+    const char* volumes_slot =
+        anisotropic_ ? contracts::kDirectionalSlots[0] : contracts::kFilteredSlot;
+    defines.push_back(contracts::unwrapped_windows_define(ctx.info(volumes_slot).clipmap_levels));
     std::vector<gpu::Binding> gbuffer = {{kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0}};
     for (uint32_t i = 0; i < 4; ++i) {
       gbuffer.push_back({kBindingGbuffer + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});

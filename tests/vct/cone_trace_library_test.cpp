@@ -42,6 +42,28 @@ void fill_radiance(VolumeData& data, F f, int levels = 1) {
   ++data.version;
 }
 
+// An opaque emitter (L = 1) filling the window layers x = first..last of one dense level.
+VolumeData emitter_layers(const ClipmapInfo& info, int first, int last) {
+  VolumeData data;
+  data.info = info;
+  CpuClipmap radiance(kR, 1);
+  for (int z = 0; z < kR; ++z) {
+    for (int y = 0; y < kR; ++y) {
+      for (int x = first; x <= last; ++x) {
+        radiance.at(clipmap_texel(data.info, {x, y, z}, 0)) = glm::vec4(1.0f);
+      }
+    }
+  }
+  data.volumes["radiance"] = std::move(radiance);
+  ++data.version;
+  return data;
+}
+
+// World position of a dense level's window corner.
+glm::vec3 window_corner(const ClipmapInfo& info) {
+  return glm::vec3(info.anchor) + glm::vec3(info.levels[0].min_corner_size);
+}
+
 class ConeTraceEnergyTest : public GpuTest, public ::testing::WithParamInterface<bool> {};
 class ConeTraceClipmapTest : public GpuTest {};
 
@@ -164,21 +186,11 @@ TEST_F(ConeTraceClipmapTest, ConeAlongAWallsEdgeIsHalfBlocked) {
 TEST_P(ConeTraceEnergyTest, EmitterInTheWindowsOuterLayerIsSeen) {
   const bool anisotropic = GetParam();
   auto irradiance_from_layer = [&](int layer) {
-    VolumeData data;
-    data.info = make_clipmap_info(kR, 1, kVoxel, glm::vec3(0.3f, -0.2f, 0.1f));
-    CpuClipmap radiance(kR, 1);
-    for (int z = 0; z < kR; ++z) {
-      for (int y = 0; y < kR; ++y) {
-        const glm::ivec3 window(layer, y, z);
-        radiance.at(clipmap_texel(data.info, window, 0)) = glm::vec4(1.0f);
-      }
-    }
-    data.volumes["radiance"] = std::move(radiance);
-    ++data.version;
+    const VolumeData data = emitter_layers(
+        make_clipmap_info(kR, 1, kVoxel, glm::vec3(0.3f, -0.2f, 0.1f)), layer, layer);
     VolumeGraph graph(filter_graph(kR, 1, anisotropic), &data, scene::make_builtin_scene("empty"));
     graph.render();
-    const glm::vec3 corner =
-        glm::vec3(data.info.anchor) + glm::vec3(data.info.levels[0].min_corner_size);
+    const glm::vec3 corner = window_corner(data.info);
     const glm::vec3 point =
         corner + glm::vec3(float(layer - 3) + 0.5f, 0.5f * kR, 0.5f * kR) * kVoxel;
     ProbeSettings s;
@@ -204,22 +216,12 @@ TEST_P(ConeTraceEnergyTest, EmitterInTheWindowsOuterLayerIsSeen) {
 // 0 leaving; 0.99-1.00 turned round (anisotropic), 0.03-0.07 (isotropic).
 TEST_P(ConeTraceEnergyTest, BeyondAWindowThatStaysPutIsEmpty) {
   const bool anisotropic = GetParam();
-  VolumeData data;
-  data.info = make_clipmap_info(kR, 1, kVoxel, glm::vec3(0.5f * kR * kVoxel));
+  const VolumeData data =
+      emitter_layers(make_clipmap_info(kR, 1, kVoxel, glm::vec3(0.5f * kR * kVoxel)), 0, 1);
   ASSERT_EQ(glm::ivec3(data.info.levels[0].origin_voxel), glm::ivec3(0));
-  CpuClipmap radiance(kR, 1);
-  for (int z = 0; z < kR; ++z) {
-    for (int y = 0; y < kR; ++y) {
-      for (int x = 0; x < 2; ++x)
-        radiance.at(clipmap_texel(data.info, {x, y, z}, 0)) = glm::vec4(1.0f);
-    }
-  }
-  data.volumes["radiance"] = std::move(radiance);
-  ++data.version;
   VolumeGraph graph(filter_graph(kR, 1, anisotropic), &data, scene::make_builtin_scene("empty"));
   graph.render();
-  const glm::vec3 corner =
-      glm::vec3(data.info.anchor) + glm::vec3(data.info.levels[0].min_corner_size);
+  const glm::vec3 corner = window_corner(data.info);
   ProbeSettings s;
   s.single_cone = true;
   s.anisotropic = anisotropic;

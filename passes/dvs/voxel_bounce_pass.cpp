@@ -49,6 +49,11 @@ class VoxelBouncePass final : public graph::Pass {
         ctx, "dvs/voxel_bounce.comp", bindings, sizeof(BouncePush), false,
         {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
          contracts::unwrapped_windows_define(ctx.info(volumes).clipmap_levels)}));
+    // The volumes' sampler of the cone-trace contract (no anisotropic filtering): a mipmapped
+    // sampler with anisotropy took extra taps around every explicit-LOD sample on lavapipe,
+    // which widened each footprint and left the voxel bounces at 0.73 of the path tracer's on
+    // the Cornell box (docs/error-budget.md, thirteenth round).
+    if (!sampler_) sampler_ = std::make_unique<contracts::VolumeSampler>(ctx.gpu());
     inputs_.forget();
   }
 
@@ -65,11 +70,6 @@ class VoxelBouncePass final : public graph::Pass {
     VkCommandBuffer cmd = ctx.cmd();
     gpu::Context& gpu = ctx.gpu();
     const VkSampler nearest = gpu.sampler(gpu::SamplerKind::NearestClamp);
-    // The volumes' sampler of the cone-trace contract (no anisotropic filtering): a mipmapped
-    // sampler with anisotropy took extra taps around every explicit-LOD sample on lavapipe,
-    // which widened each footprint and left the voxel bounces at 0.73 of the path tracer's on
-    // the Cornell box (docs/error-budget.md, thirteenth round).
-    if (!sampler_) sampler_ = std::make_unique<contracts::VolumeSampler>(gpu);
     const VkSampler repeat = sampler_->handle();
     const graph::BoundResource& out = ctx.resource("radiance");
 

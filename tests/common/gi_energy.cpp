@@ -512,7 +512,7 @@ std::vector<EnergyBoundScene> energy_bound_scenes() {
   // another cause, not yet found (docs/error-budget.md, "What is left").
   // The voxel bounces of dvs on the Cornell box add 0.89 to 1.01 of what the path tracer's next
   // bounce adds (0.49 to 0.80 while they sampled the volumes with anisotropic filtering,
-  // docs/error-budget.md, thirteenth round). On the thin wall they add 1.8 to 3.4 times what
+  // docs/error-budget.md, thirteenth round). On the thin wall they add 1.6 to 3.5 times what
   // the path tracer's second and third bounces add, the same excess fed back, and those are
   // within their noise of zero.
   return {{"cornell_point_light", cornell_lit_by_its_point_light, 0.20, 0.20},

@@ -34,8 +34,8 @@ TEST_P(DvsAnalyticTest, ReceiverUnderASquareGetsNoLightThroughIt) {
   expect_unlit_underside_sends_nothing(dvs_gi_setup(GetParam(), 0), SquareLight::Directional);
 }
 
-// Measured at 32^3: 0.999 / 0.981 / 0.960 of the radiosity solution for 0 / 1 / 2 voxel bounces,
-// at 64^3 0.995 / 0.976 / 0.955. (Until the voxel bounces sampled the volumes with the
+// Measured at 32^3: 1.000 / 0.983 / 0.964 of the radiosity solution for 0 / 1 / 2 voxel bounces,
+// at 64^3 0.997 / 0.979 / 0.959. (Until the voxel bounces sampled the volumes with the
 // contract's sampler the two-bounce case was 0.893 at 32^3: anisotropic filtering on lavapipe
 // widened every per-voxel sample; docs/error-budget.md, thirteenth round.)
 TEST_P(DvsAnalyticTest, ClosedBoxUnderAPointLightPerBounce) {

@@ -32,6 +32,32 @@ glm::dvec3 window_center_in_scene(const glm::dvec3& camera, const glm::dvec3& sc
   return bounded ? glm::clamp(camera, scene_min, scene_max) : camera;
 }
 
+glm::dvec3 level_window_center(const glm::dvec3& center, const glm::dvec3& scene_min,
+                               const glm::dvec3& scene_max, double half_width) {
+  const bool bounded = glm::all(glm::lessThanEqual(scene_min, scene_max)) &&
+                       glm::all(glm::lessThan(glm::abs(scene_min), glm::dvec3(1e300))) &&
+                       glm::all(glm::lessThan(glm::abs(scene_max), glm::dvec3(1e300)));
+  if (!bounded || !(half_width >= 0.0) || !std::isfinite(half_width)) return center;
+  glm::dvec3 out = center;
+  for (int a = 0; a < 3; ++a) {
+    const double lo = scene_min[a] + half_width;
+    const double hi = scene_max[a] - half_width;
+    out[a] = lo <= hi ? std::clamp(center[a], lo, hi) : 0.5 * (scene_min[a] + scene_max[a]);
+  }
+  return out;
+}
+
+void nest_window_origins(std::vector<glm::ivec3>& origins, uint32_t resolution, int margin) {
+  const int r = static_cast<int>(resolution);
+  margin = std::clamp(margin - margin % 2, 0, r / 4);
+  for (size_t l = origins.size(); l-- > 1;) {
+    const glm::ivec3 coarse = origins[l];
+    const glm::ivec3 lo = coarse * 2 + glm::ivec3(margin);
+    const glm::ivec3 hi = (coarse + glm::ivec3(r)) * 2 - glm::ivec3(margin + r);
+    origins[l - 1] = glm::clamp(origins[l - 1], lo, hi);
+  }
+}
+
 glm::dvec3 snap_anchor(const glm::dvec3& point, double coarsest_voxel_size) {
   const double cell = 2.0 * coarsest_voxel_size;
   return glm::floor(point / cell + 0.5) * cell;

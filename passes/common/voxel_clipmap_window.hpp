@@ -53,6 +53,25 @@ double window_reach(const glm::dvec3& center, const glm::dvec3& scene_min,
 glm::dvec3 window_center_in_scene(const glm::dvec3& camera, const glm::dvec3& scene_min,
                                   const glm::dvec3& scene_max);
 
+// Where one level's window centres when windows follow the camera: `center`
+// (window_center_in_scene) moved, per axis, as far into the scene bounds as the window's
+// `half_width` allows, so that a window narrower than the scene on an axis spends none of its
+// voxels beyond the bounds there, and a wider one centres on the scene. From a camera outside
+// the scene the finest levels still hold the side it faces, and each coarser level as much of
+// the scene as it can: a level as wide as the scene then holds all of it, at its resolution,
+// where a window centred on the bounds' face would hold only its near half. `center` itself
+// where the bounds are empty or not finite.
+glm::dvec3 level_window_center(const glm::dvec3& center, const glm::dvec3& scene_min,
+                               const glm::dvec3& scene_max, double half_width);
+
+// Moves each level's window origin (voxels of its level, from the anchor; coarsest last) inside
+// the next coarser window with `margin` voxels of the finer level to spare on every side (an
+// even number, at most R / 4), coarsest first. Windows centred on different points must stay
+// nested: consumers replace a coarse voxel by the finer level wherever that level's window
+// holds it, and sample a coarser level around any point of a finer window, two of its voxels
+// from its edge at least (a trilinear footprint never wraps around its storage).
+void nest_window_origins(std::vector<glm::ivec3>& origins, uint32_t resolution, int margin);
+
 // The anchor: `point` snapped to the grid of twice the coarsest voxel edge, so that every
 // level's window corner (an even number of its voxels from the anchor) lies on every coarser
 // level's grid and the levels stay nested.

@@ -56,6 +56,9 @@ constexpr uint32_t kHdrWordsWithEmission = 16;
 constexpr uint32_t kRgba8Words = 3;
 constexpr uint32_t kFrontWords = 6;  // stacked_surfaces = front: one word per facing
 constexpr uint32_t kFaceWords = 24;  // a faces output: area and normal sum per facing
+// Voxels of a level kept between its window and the next coarser one's edge (two coarser
+// voxels: a trilinear footprint there stays inside that window; nest_window_origins).
+constexpr int kNestingMargin = 4;
 
 bool is_power_of_two(uint32_t v) {
   return v != 0 && (v & (v - 1)) == 0;
@@ -359,7 +362,18 @@ class VoxelizePass final : public graph::Pass {
     std::vector<glm::ivec3> out(levels_);
     glm::dvec3 rel = window_center(ctx) - anchor_;
     if (!glm::all(glm::lessThan(glm::abs(rel), glm::dvec3(1e300)))) rel = glm::dvec3(0.0);
-    for (uint32_t l = 0; l < levels_; ++l) out[l] = window_origin(rel, level_size(l), resolution_);
+    const bool follows = follows_camera(ctx);
+    for (uint32_t l = 0; l < levels_; ++l) {
+      glm::dvec3 level_rel = rel;
+      if (follows) {
+        const double half_width = 0.5 * static_cast<double>(resolution_) * level_size(l);
+        level_rel =
+            level_window_center(rel + anchor_, scene_min_, scene_max_, half_width) - anchor_;
+        if (!glm::all(glm::lessThan(glm::abs(level_rel), glm::dvec3(1e300)))) level_rel = rel;
+      }
+      out[l] = window_origin(level_rel, level_size(l), resolution_);
+    }
+    nest_window_origins(out, resolution_, kNestingMargin);
     return out;
   }
 
@@ -660,7 +674,8 @@ void register_voxelize(graph::Registry& registry) {
        {"auto", "camera", "scene"},
        "what the windows centre on: auto = the scene for one level, the camera for several; "
        "camera = the camera clamped into the scene bounds (a camera outside the scene centres "
-       "on the nearest point of its bounds, where the finest levels hold what it sees)",
+       "on the nearest point of its bounds, where the finest levels hold what it sees), each "
+       "level moved as far into the bounds as its width allows",
        false},
   };
   graph::set_size_rule(info, "clipmap_info", [](const graph::SizeQuery&) {

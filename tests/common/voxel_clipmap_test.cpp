@@ -137,6 +137,86 @@ TEST(VoxelClipmapWindow, ClampedCentreHoldsEveryScenePointTheCameraWindowHeld) {
             glm::dvec3(7.0, 1.0, 2.2));
 }
 
+// Windows that follow the camera, placed as common.voxelize places them: each level centred on
+// the camera clamped into the scene, moved into the bounds as far as its width allows
+// (level_window_center), then nested (nest_window_origins). Each level holds, per axis, as much
+// of the scene as a window of its width can (up to the snapping and nesting, a few voxels),
+// never less than the window centred on the clamped camera, and often much more; the levels
+// stay nested with the margin; a level as wide as the scene holds all of it.
+TEST(VoxelClipmapWindow, LevelWindowsHoldAsMuchOfTheSceneAsTheirWidthAllows) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int gained = 0, whole = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const glm::dvec3 scene_min(unit(rng) * 10.0 - 5.0, unit(rng) * 10.0 - 5.0, unit(rng) - 0.5);
+    const glm::dvec3 side(0.1 + unit(rng), 0.1 + unit(rng), 0.1 + unit(rng));
+    const glm::dvec3 scene_max = scene_min + side;
+    const double extent = std::max({side.x, side.y, side.z});
+    const glm::dvec3 camera =
+        scene_min + glm::dvec3(unit(rng), unit(rng), unit(rng)) * (5.0 * extent) - 2.0 * extent;
+    const glm::dvec3 center = passes::common::window_center_in_scene(camera, scene_min, scene_max);
+    for (uint32_t r : {8u, 16u, 64u}) {
+      for (uint32_t levels : {2u, 4u, 6u}) {
+        const double reach = passes::common::window_reach(center, scene_min, scene_max);
+        const double finest = passes::common::auto_voxel_size(extent, r, levels, reach);
+        const glm::dvec3 anchor = passes::common::snap_anchor(
+            0.5 * (scene_min + scene_max), finest * std::ldexp(1.0, int(levels) - 1));
+        std::vector<glm::ivec3> origins(levels), common(levels);
+        for (uint32_t l = 0; l < levels; ++l) {
+          const double size = finest * std::ldexp(1.0, int(l));
+          const glm::dvec3 c = passes::common::level_window_center(center, scene_min, scene_max,
+                                                                   0.5 * double(r) * size);
+          origins[l] = window_origin(c - anchor, size, r);
+          common[l] = window_origin(center - anchor, size, r);
+        }
+        passes::common::nest_window_origins(origins, r, 4);
+        const int margin = std::min(4, int(r) / 4);
+        for (uint32_t l = 0; l < levels; ++l) {
+          const double size = finest * std::ldexp(1.0, int(l));
+          if (l + 1 < levels) {
+            const glm::ivec3 lo = origins[l + 1] * 2 + glm::ivec3(margin);
+            const glm::ivec3 hi = (origins[l + 1] + glm::ivec3(int(r))) * 2 - glm::ivec3(margin);
+            ASSERT_TRUE(glm::all(glm::greaterThanEqual(origins[l], lo)) &&
+                        glm::all(glm::lessThanEqual(origins[l] + glm::ivec3(int(r)), hi)))
+                << "trial " << trial << " R " << r << " level " << l;
+          }
+          bool holds_all = true;
+          for (int a = 0; a < 3; ++a) {
+            const auto overlap = [&](const glm::ivec3& origin) {
+              const double lo = anchor[a] + origin[a] * size;
+              return std::max(0.0,
+                              std::min(lo + r * size, scene_max[a]) - std::max(lo, scene_min[a]));
+            };
+            const double best = std::min(double(r) * size, side[a]);
+            ASSERT_GE(overlap(origins[l]), best - 8.0 * size)
+                << "trial " << trial << " R " << r << " level " << l << " axis " << a;
+            ASSERT_GE(overlap(origins[l]), overlap(common[l]) - 8.0 * size)
+                << "trial " << trial << " R " << r << " level " << l << " axis " << a;
+            if (overlap(origins[l]) > overlap(common[l]) + 4.0 * size) ++gained;
+            holds_all = holds_all && overlap(origins[l]) >= side[a] - 1e-9 * extent;
+          }
+          if (double(r) * size >= extent + 8.0 * size) {
+            EXPECT_TRUE(holds_all) << "trial " << trial << " R " << r << " level " << l;
+            ++whole;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(gained, 5000);
+  EXPECT_GT(whole, 1500);
+  // A camera in front of a box: the level as wide as the box holds all of it.
+  const glm::dvec3 box_min(0.0), box_max(0.556, 0.549, 0.559);
+  const glm::dvec3 c =
+      passes::common::window_center_in_scene({0.278, 0.273, -0.8}, box_min, box_max);
+  EXPECT_EQ(passes::common::level_window_center(c, box_min, box_max, 0.3),
+            0.5 * (box_min + box_max));
+  const glm::dvec3 near = passes::common::level_window_center(c, box_min, box_max, 0.1);
+  EXPECT_NEAR(near.z, 0.1, 1e-12);  // as far in as its half-width allows, not beyond the front
+  EXPECT_EQ(
+      passes::common::level_window_center(c, glm::dvec3(INFINITY), glm::dvec3(-INFINITY), 0.1), c);
+}
+
 // Windows that stay put start at a multiple of R with the fixed-window anchor, so their storage
 // is the identity, and lie exactly where the plain anchor put them: the voxel grid is the same.
 TEST(VoxelClipmapWindow, FixedWindowsStartOnTheTextureGridWhereTheyLayBefore) {

@@ -24,20 +24,27 @@ double window_reach(const glm::dvec3& center, const glm::dvec3& scene_min,
   return std::isfinite(reach) ? reach : 0.0;
 }
 
+namespace {
+
+// Bounds that hold something and are finite (an empty scene's are +inf / -inf).
+bool finite_bounds(const glm::dvec3& scene_min, const glm::dvec3& scene_max) {
+  return glm::all(glm::lessThanEqual(scene_min, scene_max)) &&
+         glm::all(glm::lessThan(glm::abs(scene_min), glm::dvec3(1e300))) &&
+         glm::all(glm::lessThan(glm::abs(scene_max), glm::dvec3(1e300)));
+}
+
+}  // namespace
+
 glm::dvec3 window_center_in_scene(const glm::dvec3& camera, const glm::dvec3& scene_min,
                                   const glm::dvec3& scene_max) {
-  const bool bounded = glm::all(glm::lessThanEqual(scene_min, scene_max)) &&
-                       glm::all(glm::lessThan(glm::abs(scene_min), glm::dvec3(1e300))) &&
-                       glm::all(glm::lessThan(glm::abs(scene_max), glm::dvec3(1e300)));
-  return bounded ? glm::clamp(camera, scene_min, scene_max) : camera;
+  return finite_bounds(scene_min, scene_max) ? glm::clamp(camera, scene_min, scene_max) : camera;
 }
 
 glm::dvec3 level_window_center(const glm::dvec3& center, const glm::dvec3& scene_min,
                                const glm::dvec3& scene_max, double half_width) {
-  const bool bounded = glm::all(glm::lessThanEqual(scene_min, scene_max)) &&
-                       glm::all(glm::lessThan(glm::abs(scene_min), glm::dvec3(1e300))) &&
-                       glm::all(glm::lessThan(glm::abs(scene_max), glm::dvec3(1e300)));
-  if (!bounded || !(half_width >= 0.0) || !std::isfinite(half_width)) return center;
+  if (!finite_bounds(scene_min, scene_max) || !(half_width >= 0.0) || !std::isfinite(half_width)) {
+    return center;
+  }
   glm::dvec3 out = center;
   for (int a = 0; a < 3; ++a) {
     const double lo = scene_min[a] + half_width;

@@ -77,16 +77,32 @@ TEST(VoxelClipmapWindow, LevelsStayNestedOnCoarserGrids) {
 // Windows that follow the camera, of the automatic voxel size, hold the whole scene with the
 // one-voxel margin of the consumers wherever the camera is (here up to five scene sizes
 // outside): they centre on the camera clamped into the scene bounds.
+// A random box scene away from the origin and a camera in or around it: the camera lies in
+// the box's bounds grown by `around` times its largest side on every side.
+struct RandomBoxAndCamera {
+  glm::dvec3 min, max, side;
+  double extent = 0.0;
+  glm::dvec3 camera;
+};
+RandomBoxAndCamera random_box_and_camera(std::mt19937& rng, double around) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  RandomBoxAndCamera s;
+  s.min = glm::dvec3(unit(rng) * 10.0 - 5.0, unit(rng) * 10.0 - 5.0, unit(rng) - 0.5);
+  s.side = glm::dvec3(0.1 + unit(rng), 0.1 + unit(rng), 0.1 + unit(rng));
+  s.max = s.min + s.side;
+  s.extent = std::max({s.side.x, s.side.y, s.side.z});
+  s.camera = s.min +
+             glm::dvec3(unit(rng), unit(rng), unit(rng)) * ((1.0 + 2.0 * around) * s.extent) -
+             around * s.extent;
+  return s;
+}
+
 TEST(VoxelClipmapWindow, AutomaticSizeHoldsTheSceneFromAnyCamera) {
   std::mt19937 rng(3);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int trial = 0; trial < 300; ++trial) {
-    const glm::dvec3 scene_min(unit(rng) * 10.0 - 5.0, unit(rng) * 10.0 - 5.0, unit(rng) - 0.5);
-    const glm::dvec3 side(0.1 + unit(rng), 0.1 + unit(rng), 0.1 + unit(rng));
-    const glm::dvec3 scene_max = scene_min + side;
-    const double extent = std::max({side.x, side.y, side.z});
-    const glm::dvec3 camera =
-        scene_min + glm::dvec3(unit(rng), unit(rng), unit(rng)) * (11.0 * extent) - 5.0 * extent;
+    const RandomBoxAndCamera scene = random_box_and_camera(rng, 5.0);
+    const glm::dvec3 &scene_min = scene.min, &scene_max = scene.max, &camera = scene.camera;
+    const double extent = scene.extent;
     const glm::dvec3 center = passes::common::window_center_in_scene(camera, scene_min, scene_max);
     for (uint32_t r : {16u, 32u, 128u}) {
       for (uint32_t levels : {1u, 3u, 6u}) {
@@ -145,16 +161,13 @@ TEST(VoxelClipmapWindow, ClampedCentreHoldsEveryScenePointTheCameraWindowHeld) {
 // stay nested with the margin; a level as wide as the scene holds all of it.
 TEST(VoxelClipmapWindow, LevelWindowsHoldAsMuchOfTheSceneAsTheirWidthAllows) {
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   int gained = 0, whole = 0;
   for (int trial = 0; trial < 300; ++trial) {
-    const glm::dvec3 scene_min(unit(rng) * 10.0 - 5.0, unit(rng) * 10.0 - 5.0, unit(rng) - 0.5);
-    const glm::dvec3 side(0.1 + unit(rng), 0.1 + unit(rng), 0.1 + unit(rng));
-    const glm::dvec3 scene_max = scene_min + side;
-    const double extent = std::max({side.x, side.y, side.z});
-    const glm::dvec3 camera =
-        scene_min + glm::dvec3(unit(rng), unit(rng), unit(rng)) * (5.0 * extent) - 2.0 * extent;
-    const glm::dvec3 center = passes::common::window_center_in_scene(camera, scene_min, scene_max);
+    const RandomBoxAndCamera scene = random_box_and_camera(rng, 2.0);
+    const glm::dvec3 &scene_min = scene.min, &scene_max = scene.max, &side = scene.side;
+    const double extent = scene.extent;
+    const glm::dvec3 center =
+        passes::common::window_center_in_scene(scene.camera, scene_min, scene_max);
     for (uint32_t r : {8u, 16u, 64u}) {
       for (uint32_t levels : {2u, 4u, 6u}) {
         const double reach = passes::common::window_reach(center, scene_min, scene_max);

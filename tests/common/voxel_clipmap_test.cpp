@@ -14,6 +14,7 @@
 #include <set>
 #include <tuple>
 
+#include "engine/scene/builtin_scenes.hpp"
 #include "engine/scene/scene_builder.hpp"
 #include "passes/common/voxel_clipmap_window.hpp"
 #include "tests/common/voxel_test_support.hpp"
@@ -74,9 +75,6 @@ TEST(VoxelClipmapWindow, LevelsStayNestedOnCoarserGrids) {
   }
 }
 
-// Windows that follow the camera, of the automatic voxel size, hold the whole scene with the
-// one-voxel margin of the consumers wherever the camera is (here up to five scene sizes
-// outside): they centre on the camera clamped into the scene bounds.
 // A random box scene away from the origin and a camera in or around it: the camera lies in
 // the box's bounds grown by `around` times its largest side on every side.
 struct RandomBoxAndCamera {
@@ -97,6 +95,9 @@ RandomBoxAndCamera random_box_and_camera(std::mt19937& rng, double around) {
   return s;
 }
 
+// Windows that follow the camera, of the automatic voxel size, hold the whole scene with the
+// one-voxel margin of the consumers wherever the camera is (here up to five scene sizes
+// outside): they centre on the camera clamped into the scene bounds.
 TEST(VoxelClipmapWindow, AutomaticSizeHoldsTheSceneFromAnyCamera) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 300; ++trial) {
@@ -374,6 +375,56 @@ TEST_P(VoxelScrollTest, ScrollingEqualsFullRevoxelization) {
           << "a move below the window snapping must not revoxelize";
     }
   }
+}
+
+class VoxelWindowPlacementTest : public GpuTest {};
+
+// common.voxelize itself places the windows (not a copy of its arithmetic): the built-in Cornell
+// box seen from its camera 0.8 m in front, a 6-level 64³ clipmap. Every level as wide as the box
+// holds all of it (level 4 has the voxel of one dense 64³ level fitted to the box), the finer
+// ones hold as much of it as their width allows, and each level lies inside the next coarser
+// one with four of its voxels to spare.
+TEST_F(VoxelWindowPlacementTest, ACameraOutsideTheCornellBoxGetsItWholeInTheLevelAsWideAsIt) {
+  const scene::Scene scene = scene::make_builtin_scene("cornell");
+  glm::vec3 lo, hi;
+  scene.bounds(lo, hi);
+  const glm::dvec3 box_min(lo), box_max(hi), side = box_max - box_min;
+  const double extent = std::max({side.x, side.y, side.z});
+  VoxelRun run(scene, {{"voxel.resolution", "64"}, {"voxel.levels", "6"}});
+  run.render({0.278f, 0.273f, -0.8f});
+  const VoxelVolumes v = run.read();
+  const int r = int(v.resolution);
+  int whole = 0;
+  for (int l = 0; l < int(v.levels); ++l) {
+    const double size = v.info.levels[l].min_corner_size.w;
+    const glm::dvec3 window_min =
+        glm::dvec3(v.info.anchor) + glm::dvec3(glm::vec3(v.info.levels[l].min_corner_size));
+    for (int a = 0; a < 3; ++a) {
+      const double overlap =
+          std::min(window_min[a] + r * size, box_max[a]) - std::max(window_min[a], box_min[a]);
+      EXPECT_GE(overlap, std::min(r * size, side[a]) - 8.0 * size)
+          << "level " << l << " axis " << a;
+    }
+    // A level as wide as the box with room for the snapping (a voxel) each side holds all of it.
+    if (r * size >= extent + 2.0 * size) {
+      ++whole;
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_LE(window_min[a], box_min[a]) << "level " << l << " axis " << a;
+        EXPECT_GE(window_min[a] + r * size, box_max[a]) << "level " << l << " axis " << a;
+      }
+    }
+    if (l + 1 < int(v.levels)) {
+      const glm::ivec3 fine = glm::ivec3(v.info.levels[l].origin_voxel);
+      const glm::ivec3 coarse = glm::ivec3(v.info.levels[l + 1].origin_voxel);
+      EXPECT_TRUE(glm::all(glm::greaterThanEqual(fine, coarse * 2 + glm::ivec3(4))) &&
+                  glm::all(glm::lessThanEqual(fine + glm::ivec3(r),
+                                              (coarse + glm::ivec3(r)) * 2 - glm::ivec3(4))))
+          << "level " << l;
+    }
+  }
+  // Levels 4 and 5 (level 4: 64 voxels of 0.0093 m over a 0.559 m box).
+  EXPECT_EQ(whole, 2);
+  EXPECT_NEAR(v.info.levels[4].min_corner_size.w, extent / 60.0, 1e-3 * extent);
 }
 
 }  // namespace

@@ -360,18 +360,13 @@ class VoxelizePass final : public graph::Pass {
 
   std::vector<glm::ivec3> target_origins(const graph::PassContext& ctx) const {
     std::vector<glm::ivec3> out(levels_);
-    glm::dvec3 rel = window_center(ctx) - anchor_;
-    if (!glm::all(glm::lessThan(glm::abs(rel), glm::dvec3(1e300)))) rel = glm::dvec3(0.0);
-    const bool follows = follows_camera(ctx);
+    const glm::dvec3 center = window_center(ctx);
     for (uint32_t l = 0; l < levels_; ++l) {
-      glm::dvec3 level_rel = rel;
-      if (follows) {
-        const double half_width = 0.5 * static_cast<double>(resolution_) * level_size(l);
-        level_rel =
-            level_window_center(rel + anchor_, scene_min_, scene_max_, half_width) - anchor_;
-        if (!glm::all(glm::lessThan(glm::abs(level_rel), glm::dvec3(1e300)))) level_rel = rel;
-      }
-      out[l] = window_origin(level_rel, level_size(l), resolution_);
+      // A window centred on the scene (center = scene, one level) comes back where it was.
+      const double half_width = 0.5 * static_cast<double>(resolution_) * level_size(l);
+      glm::dvec3 rel = level_window_center(center, scene_min_, scene_max_, half_width) - anchor_;
+      if (!glm::all(glm::lessThan(glm::abs(rel), glm::dvec3(1e300)))) rel = glm::dvec3(0.0);
+      out[l] = window_origin(rel, level_size(l), resolution_);
     }
     nest_window_origins(out, resolution_, kNestingMargin);
     return out;

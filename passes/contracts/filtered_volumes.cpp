@@ -3,10 +3,29 @@
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/error.hpp"
 
+#include <string>
+
 namespace voxgi::contracts {
 
 gpu::ShaderDefine unwrapped_windows_define(uint32_t clipmap_levels) {
   return {"VCT_UNWRAPPED_WINDOWS", clipmap_levels == 1 ? "1" : "0"};
+}
+
+gpu::ShaderDefine refine_levels_define(int levels) {
+  return {"VCT_REFINE_LEVELS", std::to_string(levels)};
+}
+
+graph::ParamSpec refine_levels_param() {
+  return {"refine",
+          graph::ParamType::Int,
+          2.0,
+          0.0,
+          3.0,
+          {},
+          "where a cone's step holds a surface, march it again at voxels 2^refine finer, so "
+          "that surfaces stop cones where they are, not a voxel early (docs/vct.md); 0 turns "
+          "it off, 2 costs about 2.5x the gather on lavapipe",
+          false};
 }
 
 VolumeSampler::VolumeSampler(gpu::Context& context) : context_(context) {

@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "engine/gpu/shader_compiler.hpp"
+#include "engine/graph/pass.hpp"
 
 namespace voxgi::gpu {
 class Context;
@@ -21,6 +22,12 @@ namespace voxgi::contracts {
 // window may be stored without the wrap (it stays put unless it follows the camera), and the
 // tracer then reads beyond it as empty; clipmaps of several levels keep the wrapped path.
 gpu::ShaderDefine unwrapped_windows_define(uint32_t clipmap_levels);
+
+// cone_trace.glsl's refinement where a cone meets a surface (vct_sample_step): the define for
+// `levels` levels of detail finer (0: off), and the pass parameter "refine" that sets it, the
+// same for every pass that traces cones.
+gpu::ShaderDefine refine_levels_define(int levels);
+graph::ParamSpec refine_levels_param();
 
 // "filtered" (isotropic) or the six directional volumes, in the order +X, -X, +Y, -Y, +Z, -Z.
 inline constexpr const char* kFilteredSlot = "filtered";

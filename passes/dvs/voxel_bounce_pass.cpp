@@ -48,7 +48,8 @@ class VoxelBouncePass final : public graph::Pass {
     pipeline_.emplace(graph::make_pass_compute(
         ctx, "dvs/voxel_bounce.comp", bindings, sizeof(BouncePush), false,
         {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
-         contracts::unwrapped_windows_define(ctx.info(volumes).clipmap_levels)}));
+         contracts::unwrapped_windows_define(ctx.info(volumes).clipmap_levels),
+         contracts::refine_levels_define(ctx.integer("refine"))}));
     // The volumes' sampler of the cone-trace contract (no anisotropic filtering): a mipmapped
     // sampler with anisotropy took extra taps around every explicit-LOD sample on lavapipe,
     // which widened each footprint and left the voxel bounces at 0.73 of the path tracer's on
@@ -208,6 +209,7 @@ void register_voxel_bounce(graph::Registry& registry) {
        {},
        "distance skipped at the start of each cone, in voxels (self-occlusion)",
        true},
+      contracts::refine_levels_param(),
   };
   graph::set_size_rule(info, "radiance", graph::same_layout_as("direct"));
   info.may_skip = true;

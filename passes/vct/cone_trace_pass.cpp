@@ -90,6 +90,7 @@ class ConeTracePass final : public graph::Pass {
     const char* volumes_slot =
         anisotropic_ ? contracts::kDirectionalSlots[0] : contracts::kFilteredSlot;
     defines.push_back(contracts::unwrapped_windows_define(ctx.info(volumes_slot).clipmap_levels));
+    defines.push_back(contracts::refine_levels_define(ctx.integer("refine")));
     std::vector<gpu::Binding> gbuffer = {{kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0}};
     for (uint32_t i = 0; i < 4; ++i) {
       gbuffer.push_back({kBindingGbuffer + i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
@@ -347,6 +348,7 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
                       "voxels (0: occlusion at any distance counts fully)",
                       true});
   }
+  params.push_back(contracts::refine_levels_param());
   params.push_back({"lanes",
                     graph::ParamType::Int,
                     4.0,

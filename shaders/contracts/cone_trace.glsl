@@ -43,6 +43,7 @@
 //
 // API
 //   vct_sample(p, dir, lod)            filtered volume value (stored form) at a point
+//   vct_sample_step(p, dir, lod, ...)  the same for a cone's step, refined at surfaces
 //   vct_trace_cone(cone, settings)     front-to-back accumulation along one cone
 //   vct_diffuse_cone(i, n, rot, ring, ...)  the i-th of n diffuse cones (tangent space) + weight
 //   vct_diffuse_irradiance(...)        irradiance E over the hemisphere of a normal, and AO
@@ -289,6 +290,45 @@ vec4 vct_sample(vec3 p, vec3 dir, float lod) {
   return mix(a, vct_fetch_lod(p, dir, k + 1, finest), f);
 }
 
+// Finer voxels where a cone meets a surface: how many levels of detail finer a step is marched
+// again where its sample holds a surface (vct_sample_step), and the opacity over the step that
+// counts as holding one.
+#ifndef VCT_REFINE_LEVELS
+#define VCT_REFINE_LEVELS 2
+#endif
+#define VCT_REFINE_OPACITY 0.05
+
+// The sample standing for the segment [p, p + dir * step] of a cone (`ratio` of its voxels at
+// `lod`). A sample reaches about a voxel beyond its point on every side, so a surface blocks a
+// cone from a voxel before the cone reaches it: a ceiling hid an emitter just under it from a
+// wall below, and a block the light above its top edge from the floor in front of it, by as
+// much as the cone's voxel, whatever the volume's resolution (docs/error-budget.md, fifteenth
+// round). Where the sample is opaque enough to hold a surface, the segment is marched again at
+// voxels 2^VCT_REFINE_LEVELS finer (no finer than the finest level holding p), front to back,
+// and returned in the same form: the finer voxels say where the surface stops the cone, the
+// cone's own voxels what it sends (its mean radiance over the cone's width: finer radiance
+// would be a thin probe that hits or misses a small emitter).
+vec4 vct_sample_step(vec3 p, vec3 dir, float lod, float step, float ratio) {
+  vec4 v = vct_sample(p, dir, lod);
+  if (VCT_REFINE_LEVELS <= 0 || !(1.0 - exp(-max(v.a, 0.0) * ratio) > VCT_REFINE_OPACITY)) {
+    return v;
+  }
+  int finest = voxel_finest_level(p, VCT_WINDOW_MARGIN);
+  float fine_lod = max(lod - float(VCT_REFINE_LEVELS), float(max(finest, 0)));
+  if (!(fine_lod < lod)) return v;
+  int n = int(exp2(ceil(lod - fine_lod)));
+  float sub = step / float(n);
+  float fine_voxel = voxel_size(0) * exp2(fine_lod);
+  float optical_depth = 0.0;  // over the whole step
+  for (int k = 0; k < n; ++k) {
+    vec4 f = vct_sample(p + dir * (float(k) * sub), dir, fine_lod);
+    optical_depth += max(f.a, 0.0) * sub / fine_voxel;
+  }
+  float tau = optical_depth / max(ratio, 1e-6);  // per voxel length at lod
+  vec3 mean = v.a > 1e-6 ? v.rgb / v.a : vec3(0.0);
+  return vec4(mean * tau, tau);
+}
+
 struct VctCone {
   vec3 origin;     // anchor-relative
   vec3 direction;  // unit
@@ -422,7 +462,8 @@ VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
     if (result.opacity >= VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
     VctConeStep st;
     if (!vct_cone_step(cone, frame, s, t, st)) break;  // left the volume
-    vec4 v = vct_sample(st.p, cone.direction, st.lod);
+    vec4 v = vct_sample_step(st.p, cone.direction, st.lod, st.step_length,
+                             st.step_length / st.voxel);
     float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * st.diameter / base_size);
     vct_composite(v, st.step_length / st.voxel, falloff, result.radiance, result.opacity,
                   result.occlusion);
@@ -492,7 +533,8 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     if (!spread && !axis_inside) break;
     float ratio = st.step_length / st.voxel;
     float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * st.diameter / base_size);
-    vec4 shared_sample = spread ? vec4(0.0) : vct_sample(st.p, cone.direction, st.lod);
+    vec4 shared_sample =
+        spread ? vec4(0.0) : vct_sample_step(st.p, cone.direction, st.lod, st.step_length, ratio);
     bool any_inside = !spread;
     for (int j = 0; j < lanes; ++j) {
       if (lane_opacity[j] >= VCT_OPACITY_THRESHOLD) continue;
@@ -502,7 +544,7 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
         vec3 q = st.p + t * (lane_direction[j] - cone.direction);
         if (voxel_finest_level(q, VCT_WINDOW_MARGIN) < 0) continue;
         any_inside = true;
-        v = vct_sample(q, lane_direction[j], st.lod);
+        v = vct_sample_step(q, lane_direction[j], st.lod, st.step_length, ratio);
       }
       vct_composite(v, ratio, falloff, lane_radiance[j], lane_opacity[j], lane_occlusion[j]);
     }

@@ -18,13 +18,14 @@ gpu::ShaderDefine refine_levels_define(int levels) {
 graph::ParamSpec refine_levels_param() {
   return {"refine",
           graph::ParamType::Int,
-          2.0,
+          0.0,
           0.0,
           3.0,
           {},
           "where a cone's step holds a surface, march it again at voxels 2^refine finer, so "
-          "that surfaces stop cones where they are, not a voxel early (docs/vct.md); 0 turns "
-          "it off, 2 costs about 2.5x the gather on lavapipe",
+          "that surfaces stop cones where they are, not a voxel early (docs/vct.md); 0 "
+          "(default) is off; 2 lowers the Cornell boxes' indirect relMSE by 20-26% at 2.2-2.8x "
+          "the gather's cost on lavapipe",
           false};
 }
 

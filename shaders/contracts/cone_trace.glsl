@@ -291,10 +291,10 @@ vec4 vct_sample(vec3 p, vec3 dir, float lod) {
 }
 
 // Finer voxels where a cone meets a surface: how many levels of detail finer a step is marched
-// again where its sample holds a surface (vct_sample_step), and the opacity over the step that
-// counts as holding one.
+// again where its sample holds a surface (vct_sample_step; 0: never, the passes' parameter
+// "refine" sets it), and the opacity over the step that counts as holding one.
 #ifndef VCT_REFINE_LEVELS
-#define VCT_REFINE_LEVELS 2
+#define VCT_REFINE_LEVELS 0
 #endif
 #define VCT_REFINE_OPACITY 0.05
 

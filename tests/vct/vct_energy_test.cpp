@@ -69,6 +69,33 @@ TEST_P(VctEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
   }
 }
 
+// The same bound with cones refined where they meet a surface (cone_trace.refine, off by
+// default for its cost): surfaces then stop cones later, so more of the light beyond reaches
+// them, and that must not become more than the path tracer's.
+class VctRefinedEnergyBoundTest : public GpuTest, public ::testing::WithParamInterface<size_t> {};
+
+TEST_P(VctRefinedEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
+  const EnergyBoundScene bound_scene = energy_bound_scenes().at(GetParam());
+  const scene::Scene scene = bound_scene.make();
+  const PathTracedMean reference =
+      path_traced_mean_indirect(scene, kEnergyBoundImageSize, 1, kEnergyBoundSamplesPerPixel);
+  VoxelGiSetup gi = vct_gi_setup(32u, 9);
+  gi.overrides["cone_trace.refine"] = "2";
+  gi.label += ", refine 2";
+  RenderHarness harness(voxel_gi_render_setup(gi, scene, kEnergyBoundImageSize));
+  harness.render();
+  const RenderedImage indirect = harness.output("indirect");
+  expect_finite_non_negative(indirect, gi.label);
+  expect_within_energy_bound(std::string(bound_scene.name) + ", " + gi.label,
+                             mean_luminance(indirect), reference, bound_scene.tolerance);
+}
+
+INSTANTIATE_TEST_SUITE_P(Voxels, VctRefinedEnergyBoundTest,
+                         ::testing::Range(size_t{0}, energy_bound_scenes().size()),
+                         [](const auto& param_info) {
+                           return std::string(energy_bound_scenes().at(param_info.param).name);
+                         });
+
 INSTANTIATE_TEST_SUITE_P(
     Voxels, VctEnergyBoundTest,
     ::testing::Combine(::testing::Range(size_t{0}, energy_bound_scenes().size()),

@@ -462,11 +462,10 @@ VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
     if (result.opacity >= VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
     VctConeStep st;
     if (!vct_cone_step(cone, frame, s, t, st)) break;  // left the volume
-    vec4 v = vct_sample_step(st.p, cone.direction, st.lod, st.step_length,
-                             st.step_length / st.voxel);
+    float ratio = st.step_length / st.voxel;
+    vec4 v = vct_sample_step(st.p, cone.direction, st.lod, st.step_length, ratio);
     float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * st.diameter / base_size);
-    vct_composite(v, st.step_length / st.voxel, falloff, result.radiance, result.opacity,
-                  result.occlusion);
+    vct_composite(v, ratio, falloff, result.radiance, result.opacity, result.occlusion);
     t += st.step_length;
   }
   return result;

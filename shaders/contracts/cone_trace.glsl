@@ -291,10 +291,10 @@ vec4 vct_sample(vec3 p, vec3 dir, float lod) {
 }
 
 // Finer voxels where a cone meets a surface: how many levels of detail finer a step is marched
-// again where its sample holds a surface (vct_sample_step; 0: never, the passes' parameter
-// "refine" sets it), and the opacity over the step that counts as holding one.
+// again where its sample holds a surface (vct_sample_step; 0: never; the passes' parameter
+// "refine" sets it, 1 by default), and the opacity over the step that counts as holding one.
 #ifndef VCT_REFINE_LEVELS
-#define VCT_REFINE_LEVELS 0
+#define VCT_REFINE_LEVELS 1
 #endif
 #define VCT_REFINE_OPACITY 0.05
 
@@ -304,25 +304,35 @@ vec4 vct_sample(vec3 p, vec3 dir, float lod) {
 // wall below, and a block the light above its top edge from the floor in front of it, by as
 // much as the cone's voxel, whatever the volume's resolution (docs/error-budget.md, fifteenth
 // round). Where the sample is opaque enough to hold a surface, the segment is marched again at
-// voxels 2^VCT_REFINE_LEVELS finer (no finer than the finest level holding p), front to back,
-// and returned in the same form: the finer voxels say where the surface stops the cone, the
-// cone's own voxels what it sends (its mean radiance over the cone's width: finer radiance
-// would be a thin probe that hits or misses a small emitter).
+// the whole level of detail VCT_REFINE_LEVELS finer (no finer than the finest level holding
+// each point), front to back, and returned in the same form: the finer voxels say where the
+// surface stops the cone, the cone's own voxels what it sends (its mean radiance over the
+// cone's width: finer radiance would be a thin probe that hits or misses a small emitter).
+// Whole levels, read without the facing test (opacity only), keep a refined step at one
+// directional fetch per point: half the cost of interpolating between levels, for the same
+// result (docs/error-budget.md, sixteenth round).
 vec4 vct_sample_step(vec3 p, vec3 dir, float lod, float step, float ratio) {
   vec4 v = vct_sample(p, dir, lod);
   if (VCT_REFINE_LEVELS <= 0 || !(1.0 - exp(-max(v.a, 0.0) * ratio) > VCT_REFINE_OPACITY)) {
     return v;
   }
-  int finest = voxel_finest_level(p, VCT_WINDOW_MARGIN);
-  float fine_lod = max(lod - float(VCT_REFINE_LEVELS), float(max(finest, 0)));
-  if (!(fine_lod < lod)) return v;
-  int n = int(exp2(ceil(lod - fine_lod)));
-  float sub = step / float(n);
-  float fine_voxel = voxel_size(0) * exp2(fine_lod);
-  float optical_depth = 0.0;  // over the whole step
-  for (int k = 0; k < n; ++k) {
-    vec4 f = vct_sample(p + dir * (float(k) * sub), dir, fine_lod);
-    optical_depth += max(f.a, 0.0) * sub / fine_voxel;
+  int finest_at_p = max(voxel_finest_level(p, VCT_WINDOW_MARGIN), 0);
+  int fine_k = max(int(round(lod)) - VCT_REFINE_LEVELS, finest_at_p);
+  float levels = lod - float(fine_k);
+  if (!(levels >= 0.5)) return v;  // the step is no coarser than its finest voxels
+  int points = 1 << int(round(levels));
+  float sub_step = step / float(points);
+  float optical_depth = 0.0;  // of the whole step
+  for (int k = 0; k < points; ++k) {
+    vec3 q = p + dir * (float(k) * sub_step);
+    // A point beyond the finest level at p reads the finest level that holds it.
+    int finest = voxel_finest_level(q, VCT_WINDOW_MARGIN);
+    if (finest < 0) continue;
+    int kq = max(fine_k, finest);
+    int level = min(kq, voxel_level_count() - 1);
+    if (!voxel_level_valid(level)) continue;
+    vec4 f = vct_fetch_directional(q, dir, level, kq - level);
+    optical_depth += max(f.a, 0.0) * sub_step / (voxel_size(0) * exp2(float(kq)));
   }
   float tau = optical_depth / max(ratio, 1e-6);  // per voxel length at lod
   vec3 mean = v.a > 1e-6 ? v.rgb / v.a : vec3(0.0);

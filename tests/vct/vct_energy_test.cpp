@@ -69,9 +69,10 @@ TEST_P(VctEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
   }
 }
 
-// The same bound with cones refined where they meet a surface (cone_trace.refine, off by
-// default for its cost): surfaces then stop cones later, so more of the light beyond reaches
-// them, and that must not become more than the path tracer's.
+// The same bound at every other setting of the cones' refinement where they meet a surface
+// (cone_trace.refine; the test above runs the default, 1): off, surfaces stop cones a voxel
+// early; refined further, they stop them later, so more of the light beyond reaches them, and
+// that must not become more than the path tracer's.
 class VctRefinedEnergyBoundTest : public GpuTest, public ::testing::WithParamInterface<size_t> {};
 
 TEST_P(VctRefinedEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
@@ -79,15 +80,17 @@ TEST_P(VctRefinedEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
   const scene::Scene scene = bound_scene.make();
   const PathTracedMean reference =
       path_traced_mean_indirect(scene, kEnergyBoundImageSize, 1, kEnergyBoundSamplesPerPixel);
-  VoxelGiSetup gi = vct_gi_setup(32u, 9);
-  gi.overrides["cone_trace.refine"] = "2";
-  gi.label += ", refine 2";
+  const VoxelGiSetup gi = vct_gi_setup(32u, 9);
   RenderHarness harness(voxel_gi_render_setup(gi, scene, kEnergyBoundImageSize));
-  harness.render();
-  const RenderedImage indirect = harness.output("indirect");
-  expect_finite_non_negative(indirect, gi.label);
-  expect_within_energy_bound(std::string(bound_scene.name) + ", " + gi.label,
-                             mean_luminance(indirect), reference, bound_scene.tolerance);
+  for (int refine : {0, 2, 3}) {
+    harness.executor().set_param("cone_trace.refine", std::to_string(refine));
+    harness.render();
+    const std::string label =
+        std::string(bound_scene.name) + ", " + gi.label + ", refine " + std::to_string(refine);
+    const RenderedImage indirect = harness.output("indirect");
+    expect_finite_non_negative(indirect, label);
+    expect_within_energy_bound(label, mean_luminance(indirect), reference, bound_scene.tolerance);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Voxels, VctRefinedEnergyBoundTest,

@@ -222,6 +222,7 @@ class BenchRun {
       if (!spec_.reference.is_image()) {
         std::map<std::string, std::string> full_set = spec_.reference.set;
         full_set[pass + ".deferred_layers"] = "true";
+        full_set[pass + ".pixel_jitter"] = "false";  // as the same-bounce reference
         // The bench's own reference when it already splits that way.
         refs.full_like_split =
             full_set == spec_.reference.set

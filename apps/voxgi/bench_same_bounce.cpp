@@ -48,6 +48,7 @@ std::map<std::string, std::string> same_bounce_reference_set(
   std::map<std::string, std::string> set = reference_set;
   set[path_tracer_pass + ".max_depth"] = std::to_string(model.bounces + 1);
   set[path_tracer_pass + ".deferred_layers"] = "true";
+  set[path_tracer_pass + ".pixel_jitter"] = "false";
   if (model.diffuse_only) set[path_tracer_pass + ".lambert"] = "true";
   return set;
 }

@@ -30,8 +30,10 @@ std::optional<IndirectModel> indirect_model_of(const graph::GraphDesc& desc,
 std::string path_tracer_pass_of(const graph::GraphDesc& reference);
 
 // The reference overrides plus, on the path tracer pass: max_depth = bounces + 1 (the
-// deferred split counts emitters one reflection behind), deferred_layers = true, and
-// lambert = true for a diffuse-only technique.
+// deferred split counts emitters one reflection behind), deferred_layers = true,
+// pixel_jitter = false (every sample through the pixel's centre, where the techniques' G-buffer
+// shades: the pixel's area would mix in what no per-pixel gather can show, such as a 1 mm gap at an
+// emitter's rim), and lambert = true for a diffuse-only technique.
 std::map<std::string, std::string> same_bounce_reference_set(
     const std::map<std::string, std::string>& reference_set, const std::string& path_tracer_pass,
     const IndirectModel& model);

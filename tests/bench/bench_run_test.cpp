@@ -280,7 +280,7 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
       "sweep": { "dvs.bounces": [0, 1] } } ],)";
   write_text(dir_ / "gi.json", "{" + graphs + R"(
   "reference": { "graph": "graphs/reference.json", "frames": 4,
-                 "set": { "path_tracer.deferred_layers": true } } })");
+                 "set": { "path_tracer.deferred_layers": true, "path_tracer.pixel_jitter": false } } })");
   ProcessOptions options;
   options.timeout = std::chrono::milliseconds(300000);
   const ProcessResult r = voxgi(
@@ -307,6 +307,7 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
     EXPECT_EQ(same["reference_set"]["path_tracer.max_depth"], std::to_string(bounces[i] + 1));
     EXPECT_EQ(same["reference_set"]["path_tracer.lambert"], "true");
     EXPECT_EQ(same["reference_set"]["path_tracer.deferred_layers"], "true");
+    EXPECT_EQ(same["reference_set"]["path_tracer.pixel_jitter"], "false");
     // The bench's reference already splits as the techniques do: it is the full one.
     EXPECT_EQ(same["full_reference_key"], item["reference_key"]);
     EXPECT_EQ(same["full_indirect"], item["metrics"]["indirect"]);

@@ -84,6 +84,7 @@ TEST(BenchSameBounce, SameBounceReferenceSettings) {
   EXPECT_EQ(vct, (std::map<std::string, std::string>{{"path_tracer.samples_per_frame", "4"},
                                                      {"path_tracer.max_depth", "2"},
                                                      {"path_tracer.deferred_layers", "true"},
+                                                     {"path_tracer.pixel_jitter", "false"},
                                                      {"path_tracer.lambert", "true"}}));
   // dvs with dvs.bounces = 2: three bounces, max_depth 4 (docs/dvs.md: K + 2).
   EXPECT_EQ(same_bounce_reference_set({}, pass, IndirectModel{3, true}).at("path_tracer.max_depth"),

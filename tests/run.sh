@@ -31,5 +31,5 @@ if [ "$#" -eq 0 ]; then
   done
   # Coverage-guided fuzzing of the JSON reader, graph files, expressions, bench files and glTF,
   # VOXGI_FUZZ_SECONDS each (tests/fuzz/run-libfuzzer.sh runs them longer locally).
-  tests/fuzz/run-libfuzzer.sh build-sanitize "${VOXGI_FUZZ_SECONDS:-60}"
+  tests/fuzz/run-libfuzzer.sh build-sanitize "${VOXGI_FUZZ_SECONDS:-30}"
 fi

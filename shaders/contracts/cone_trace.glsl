@@ -329,9 +329,8 @@ vec4 vct_sample_step(vec3 p, vec3 dir, float lod, float step, float ratio) {
     int finest = voxel_finest_level(q, VCT_WINDOW_MARGIN);
     if (finest < 0) continue;
     int kq = max(fine_k, finest);
-    int level = min(kq, voxel_level_count() - 1);
-    if (!voxel_level_valid(level)) continue;
-    vec4 f = vct_fetch_directional(q, dir, level, kq - level);
+    // Opacity only: no finest level passed, so no facing test.
+    vec4 f = vct_fetch_lod(q, dir, kq, -1);
     optical_depth += max(f.a, 0.0) * sub_step / (voxel_size(0) * exp2(float(kq)));
   }
   float tau = optical_depth / max(ratio, 1e-6);  // per voxel length at lod

@@ -280,7 +280,8 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
       "sweep": { "dvs.bounces": [0, 1] } } ],)";
   write_text(dir_ / "gi.json", "{" + graphs + R"(
   "reference": { "graph": "graphs/reference.json", "frames": 4,
-                 "set": { "path_tracer.deferred_layers": true, "path_tracer.pixel_jitter": false } } })");
+                 "set": { "path_tracer.deferred_layers": true,
+                          "path_tracer.pixel_jitter": false } } })");
   ProcessOptions options;
   options.timeout = std::chrono::milliseconds(300000);
   const ProcessResult r = voxgi(

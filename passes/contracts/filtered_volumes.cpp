@@ -3,6 +3,7 @@
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/error.hpp"
 
+#include <limits>
 #include <string>
 
 namespace voxgi::contracts {
@@ -27,6 +28,22 @@ graph::ParamSpec refine_levels_param() {
           "1 (default) lowers the Cornell boxes' indirect relMSE by 16-26% at 64^3 and above, at "
           "1.5x the gather's cost on lavapipe",
           false};
+}
+
+graph::ParamSpec cone_max_distance_param() {
+  return {"max_distance",
+          graph::ParamType::Float,
+          0.0,
+          0.0,
+          1e6,
+          {},
+          "longest cone, in scene units; 0: no limit (cones stop where they are opaque or leave "
+          "the clipmap)",
+          true};
+}
+
+float cone_max_distance(double value) {
+  return value > 0.0 ? static_cast<float>(value) : std::numeric_limits<float>::max();
 }
 
 VolumeSampler::VolumeSampler(gpu::Context& context) : context_(context) {

@@ -182,7 +182,7 @@ class ConeTracePass final : public graph::Pass {
                        e.height,
                        specular_ ? 1 : ctx.integer("diffuse_cones"),
                        static_cast<float>(ctx.number("step_factor")),
-                       static_cast<float>(ctx.number("max_distance")),
+                       contracts::cone_max_distance(ctx.number("max_distance")),
                        specular_ ? 0.0f : static_cast<float>(ctx.number("ao_falloff")),
                        static_cast<float>(ctx.number("normal_offset")),
                        static_cast<float>(ctx.number("start_offset")),
@@ -368,14 +368,7 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
                     "beta: step length / cone diameter; opacity is corrected for the step, so "
                     "smaller values cost more, not change the brightness",
                     true});
-  params.push_back({"max_distance",
-                    graph::ParamType::Float,
-                    100.0,
-                    0.0,
-                    1e6,
-                    {},
-                    "longest cone in metres (cones also stop where they leave the clipmap)",
-                    true});
+  params.push_back(contracts::cone_max_distance_param());
   params.push_back({"normal_offset",
                     graph::ParamType::Float,
                     1.0,

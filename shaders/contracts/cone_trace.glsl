@@ -363,7 +363,7 @@ VctCone vct_cone_from_surface(vec3 origin, vec3 direction, float tan_half_angle,
 struct VctTraceSettings {
   float step_factor;     // beta: step length / cone diameter (0 < beta)
   int lanes;             // lanes of a capped cone, 1..VCT_MAX_LANES (vct_trace_cone)
-  float max_distance;    // metres along the cone
+  float max_distance;    // along the cone, scene units (FLT_MAX: no limit)
   float start_distance;  // metres skipped at the start (self-occlusion)
   float ao_falloff;      // lambda of f(r) = 1 / (1 + lambda r), r in level-0 voxel edges
 };

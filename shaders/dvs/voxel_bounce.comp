@@ -29,7 +29,7 @@ layout(push_constant) uniform Push {
   uvec3 size;  // the stacked image: (R, R, R * L)
   int cones;
   float step_factor;
-  float max_distance;   // metres
+  float max_distance;   // scene units (FLT_MAX: no limit)
   float normal_offset;  // voxels of the voxel's level
   float start_offset;   // voxels of the voxel's level
 } pc;

@@ -61,18 +61,23 @@ double LitSquare::shadow_side() const {
 }
 
 std::string LitSquare::label() const {
-  char text[96];
-  std::snprintf(text, sizeof text, "%s light, h = %.2f m%s",
+  char text[144];
+  char units[48] = "";
+  if (units_per_metre != 1.0) {
+    std::snprintf(units, sizeof units, ", modelled at %g units per metre", units_per_metre);
+  }
+  std::snprintf(text, sizeof text, "%s light, h = %.2f m%s%s",
                 light == SquareLight::Directional ? "directional" : "point", height,
-                under ? " under the square" : "");
+                under ? " under the square" : "", units);
   return text;
 }
 
 scene::Scene lit_square_scene(const LitSquare& setup) {
   scene::SceneBuilder b("lit_square");
-  const float a = static_cast<float>(LitSquare::kSide);
-  const float r = static_cast<float>(LitSquare::kReceiverSide);
-  const float h = static_cast<float>(setup.height);
+  const float u = static_cast<float>(setup.units_per_metre);
+  const float a = static_cast<float>(LitSquare::kSide) * u;
+  const float r = static_cast<float>(LitSquare::kReceiverSide) * u;
+  const float h = static_cast<float>(setup.height) * u;
   const int square = b.add_material(matte(glm::vec3(static_cast<float>(LitSquare::kAlbedo))));
   const int receiver = b.add_material(matte(glm::vec3(1.0f)));
   // Facing +y.
@@ -90,16 +95,17 @@ scene::Scene lit_square_scene(const LitSquare& setup) {
     light.intensity = static_cast<float>(LitSquare::kIrradiance);
   } else {
     light.type = scene::LightType::Point;
-    light.intensity = static_cast<float>(LitSquare::kIntensity);
+    light.intensity = static_cast<float>(LitSquare::kIntensity) * u * u;  // the same irradiance
   }
-  b.add_light(light, {0.0f, static_cast<float>(setup.light_height()), 0.0f}, {0.0f, -1.0f, 0.0f});
+  b.add_light(light, {0.0f, static_cast<float>(setup.light_height()) * u, 0.0f},
+              {0.0f, -1.0f, 0.0f});
   // 4 cm from the receiver (at most half its distance to the square) on its facing side,
   // looking at it; the view's half-width there is 6 mm, inside the receiver's 7.5 mm.
-  const float distance = std::min(0.04f, 0.5f * h);
+  const float distance = std::min(0.04f * u, 0.5f * h);
   const float y = setup.under ? -h : h;
   const float side = setup.under ? 1.0f : -1.0f;
   b.add_camera("at_receiver", {0.0f, y + side * distance, 0.0f}, {0.0f, y, 0.0f},
-               2.0f * std::atan(0.006f / distance), {0.0f, 0.0f, 1.0f});
+               2.0f * std::atan(0.006f * u / distance), {0.0f, 0.0f, 1.0f});
   return b.finish();
 }
 
@@ -481,10 +487,10 @@ void expect_unlit_underside_sends_nothing(const VoxelGiSetup& gi, SquareLight li
 }
 
 void expect_lit_square_matches_closed_form(const VoxelGiSetup& gi, SquareLight light,
-                                           double tolerance) {
+                                           double tolerance, double units_per_metre) {
   ASSERT_EQ(gi.indirect_bounces, 1) << "the closed form is for one bounce";
   for (double height : kReceiverHeights) {
-    const LitSquare square{light, height};
+    const LitSquare square{light, height, false, units_per_metre};
     const IndirectComparison c = compare_lit_square(gi, square);
     std::printf("[lit square] %s, %s: analytic %.5f, mean ratio %.4f (per placement%s)\n",
                 gi.label.c_str(), square.label().c_str(), c.expected, c.mean_ratio(),

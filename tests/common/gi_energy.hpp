@@ -75,6 +75,9 @@ struct LitSquare {
   // The receiver `height` under the square instead, facing up at its unlit underside, in the
   // square's shadow: no light reaches it in one bounce (the camera then looks down at it).
   bool under = false;
+  // Scene units per metre: 1000 builds it in millimetres. The closed form does not change, and
+  // neither may the rendering (nothing in the renderer may assume metres).
+  double units_per_metre = 1.0;
 
   static constexpr double kSide = 1.0;
   static constexpr double kAlbedo = 0.8;  // 204/255: exact in the 8-bit voxel albedo
@@ -276,10 +279,12 @@ inline constexpr double kLitSquareTolerance = 0.30;
 inline constexpr double kReceiverHeights[] = {0.25, 0.5, 0.75};
 
 // Renders the receiver at every height of kReceiverHeights under `light` (one indirect bounce)
-// and expects each mean within kLitSquareTolerance of the closed form; prints the ratios.
+// and expects each mean within kLitSquareTolerance of the closed form; prints the ratios. The
+// scene is built in units of 1 / units_per_metre m.
 // A family whose measured error is larger passes its own tolerance and states the cause.
 void expect_lit_square_matches_closed_form(const VoxelGiSetup& gi, SquareLight light,
-                                           double tolerance = kLitSquareTolerance);
+                                           double tolerance = kLitSquareTolerance,
+                                           double units_per_metre = 1.0);
 // The receiver under the square (LitSquare::under): the square's lit top sends no light down
 // through it, so the receiver's indirect light must stay below a fraction of what a receiver
 // as far above it gets (the closed form); prints the ratios. Close to the square the cones

@@ -50,6 +50,15 @@ INSTANTIATE_TEST_SUITE_P(Voxels, DvsAnalyticTest, ::testing::Values(32u, 64u),
                            return voxel_resolution_name(param_info.param);
                          });
 
+// Nothing may assume metres: the same square modelled in millimetres gets the same light
+// (vct_energy_test.cpp, VctSceneUnitsTest).
+class DvsSceneUnitsTest : public GpuTest {};
+
+TEST_F(DvsSceneUnitsTest, ReceiverOverASquareModelledInMillimetres) {
+  expect_lit_square_matches_closed_form(dvs_gi_setup(32, 0), SquareLight::Directional,
+                                        kLitSquareTolerance, 1000.0);
+}
+
 // (scene index in energy_bound_scenes(), voxel resolution, cones of the gather and the bounces)
 class DvsEnergyBoundTest : public GpuTest,
                            public ::testing::WithParamInterface<std::tuple<size_t, uint32_t, int>> {

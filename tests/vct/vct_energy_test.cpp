@@ -44,6 +44,16 @@ INSTANTIATE_TEST_SUITE_P(Voxels, VctAnalyticTest, ::testing::Values(32u, 64u),
                            return voxel_resolution_name(param_info.param);
                          });
 
+// Nothing may assume metres: the same square modelled in millimetres (glTF files in other
+// units are common) gets the same light. Cones used to stop after 100 units, which left the
+// receiver at 0.25 m (250 units) without the square's light.
+class VctSceneUnitsTest : public GpuTest {};
+
+TEST_F(VctSceneUnitsTest, ReceiverOverASquareModelledInMillimetres) {
+  expect_lit_square_matches_closed_form(vct_gi_setup(32), SquareLight::Directional,
+                                        kLitSquareTolerance, 1000.0);
+}
+
 // (scene index in energy_bound_scenes(), voxel resolution)
 class VctEnergyBoundTest : public GpuTest,
                            public ::testing::WithParamInterface<std::tuple<size_t, uint32_t>> {};

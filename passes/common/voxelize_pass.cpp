@@ -628,9 +628,8 @@ void register_voxelize(graph::Registry& registry) {
        1e5,
        {},
        "level-0 voxel edge (scene units); 0 = automatic: one level fits the scene bounds, L levels "
-       "make "
-       "the coarsest level's half-width span the scene's largest side (windows that follow the "
-       "camera centre on it clamped into the scene bounds)",
+       "make the coarsest level's half-width span the scene's largest side (windows that follow "
+       "the camera centre on it clamped into the scene bounds)",
        false},
       {"strategy",
        graph::ParamType::Enum,

@@ -32,7 +32,7 @@ graph::ParamSpec refine_levels_param();
 // The longest cone, the pass parameter "max_distance" of every pass that traces cones, in the
 // scene's units: 0 (the default) is no limit, cones end where they are opaque or leave the
 // clipmap. (A default of 100 "metres" cut every cone of a scene modelled in centimetres at
-// 1 m: the conference room's one-bounce light was 90% dark.) cone_max_distance turns its value
+// 1 m: the conference room's one-bounce light was 94% dark.) cone_max_distance turns its value
 // into the length the shaders compare with.
 graph::ParamSpec cone_max_distance_param();
 float cone_max_distance(double value);

@@ -364,7 +364,7 @@ struct VctTraceSettings {
   float step_factor;     // beta: step length / cone diameter (0 < beta)
   int lanes;             // lanes of a capped cone, 1..VCT_MAX_LANES (vct_trace_cone)
   float max_distance;    // along the cone, scene units (FLT_MAX: no limit)
-  float start_distance;  // metres skipped at the start (self-occlusion)
+  float start_distance;  // skipped at the start, scene units (self-occlusion)
   float ao_falloff;      // lambda of f(r) = 1 / (1 + lambda r), r in level-0 voxel edges
 };
 

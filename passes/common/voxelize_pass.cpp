@@ -55,7 +55,7 @@ constexpr uint32_t kHdrWords = 9;
 constexpr uint32_t kHdrWordsWithEmission = 16;
 constexpr uint32_t kRgba8Words = 3;
 constexpr uint32_t kFrontWords = 6;  // stacked_surfaces = front: one word per facing
-constexpr uint32_t kFaceWords = 24;  // a faces output: area and normal sum per facing
+constexpr uint32_t kFaceWords = 30;  // a faces output: area, normal sum, front plane per facing
 // Voxels of a level kept between its window and the next coarser one's edge (two coarser
 // voxels: a trilinear footprint there stays inside that window; nest_window_origins).
 constexpr int kNestingMargin = 4;
@@ -596,7 +596,7 @@ void register_voxelize(graph::Registry& registry) {
        {},
        false,
        "accumulation records (64 bytes per voxel with emission, 36 without, 12 for "
-       "average_rgba8, 96 more with faces, 24 more with stacked_surfaces = front); R^3 records "
+       "average_rgba8, 120 more with faces, 24 more with stacked_surfaces = front); R^3 records "
        "voxelize a level in one go, fewer split it",
        true},
   };

@@ -87,20 +87,31 @@ bool voxel_front_visible(uint key, uint front) {
 
 // Faces (the optional faces volume, contracts/voxel_volumes.glsl): per group of writers whose
 // normal leans furthest along one signed axis (voxel_front_axis), the sum of their areas in
-// the voxel (voxel faces) x 2^16 and of their unit normals x 4096 (two's complement): words 4g
-// (area) and 4g + 1..3 (xyz) of the 24 that follow the strategy's words (before the front
-// words). A writer's area is at most sqrt(3) (a triangle across the voxel's diagonal), so the
-// area sum holds some 37 000 writers; the normal's overflow is as for the normal.
-const uint VOXEL_FACE_WORDS = 24u;
+// the voxel (voxel faces) x 2^16, of their unit normals x 4096 (two's complement) and the
+// frontmost of their planes: words 5g (area), 5g + 1..3 (xyz) and 5g + 4 (the largest plane
+// offset along the writer's normal, (offset + 1) x 1024 + 1 by atomicMax, 0 for none) of the
+// 30 that follow the strategy's words (before the front words). A writer's area is at most
+// sqrt(3) (a triangle across the voxel's diagonal), so the area sum holds some 37 000 writers;
+// the normal's overflow is as for the normal.
+const uint VOXEL_FACE_WORDS = 30u;
+const uint VOXEL_FACE_GROUP_WORDS = 5u;
 const float VOXEL_FACE_AREA_SCALE = 65536.0;
+const float VOXEL_FACE_OFFSET_SCALE = 1024.0;
 
-void voxel_accumulate_face(uint face_base, vec3 normal, float area) {
-  uint word = face_base + 4u * voxel_front_axis(normal);
+void voxel_accumulate_face(uint face_base, vec3 normal, float area, float plane_offset) {
+  uint word = face_base + VOXEL_FACE_GROUP_WORDS * voxel_front_axis(normal);
   ivec3 n = ivec3(round(clamp(normal, -1.0, 1.0) * VOXEL_UNIT_SCALE));
   atomicAdd(voxel_scratch[word], uint(round(clamp(area, 0.0, 2.0) * VOXEL_FACE_AREA_SCALE)));
   atomicAdd(voxel_scratch[word + 1u], uint(n.x));
   atomicAdd(voxel_scratch[word + 2u], uint(n.y));
   atomicAdd(voxel_scratch[word + 3u], uint(n.z));
+  float offset = clamp(plane_offset, -1.0, 1.0) + 1.0;
+  atomicMax(voxel_scratch[word + 4u], uint(round(offset * VOXEL_FACE_OFFSET_SCALE)) + 1u);
+}
+
+// The frontmost plane offset of a group whose key word is `key` (0 when it has none).
+float voxel_face_plane_offset(uint key) {
+  return key == 0u ? 0.0 : float(key - 1u) / VOXEL_FACE_OFFSET_SCALE - 1.0;
 }
 
 // Adds a non-negative fixed-point value below 2^40 (value = x * 2^24, x <= 65504) to the

@@ -67,19 +67,20 @@ void main() {
     // Shares of the surfaces' area in the voxel.
     float total_area = 0.0;
     for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-      total_area += float(voxel_scratch[face_base + 4u * uint(g)]);
+      total_area += float(voxel_scratch[face_base + VOXEL_FACE_GROUP_WORDS * uint(g)]);
     }
     for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-      uint area = voxel_scratch[face_base + 4u * uint(g)];
+      uint w = face_base + VOXEL_FACE_GROUP_WORDS * uint(g);
+      uint area = voxel_scratch[w];
       if (area == 0u) continue;
-      uint w = face_base + 4u * uint(g);
       vec3 sum = vec3(int(voxel_scratch[w + 1u]), int(voxel_scratch[w + 2u]),
                       int(voxel_scratch[w + 3u]));
       // The sum leans along the group's axis by construction, so it is never zero.
       vec3 axis = vec3(0.0);
       axis[g >> 1] = (g & 1) == 0 ? 1.0 : -1.0;
       vec3 direction = dot(sum, sum) > 0.0 ? normalize(sum) : axis;
-      faces = voxel_pack_face(faces, g, direction, float(area) / total_area);
+      faces = voxel_pack_face(faces, g, direction, float(area) / total_area,
+                              voxel_face_plane_offset(voxel_scratch[w + 4u]));
     }
 #endif
 #ifdef VOXEL_HAS_EMISSION

@@ -161,9 +161,9 @@ void store(ivec3 voxel, float column_share) {
   // voxels of the column it writes.
   float area = coverage / max(a[coverage_axis], 1e-3) * column_share;
 #ifdef VOXEL_HAS_EMISSION
-  voxel_accumulate_face(base + VOXEL_HDR_WORDS_WITH_EMISSION, n, area);
+  voxel_accumulate_face(base + VOXEL_HDR_WORDS_WITH_EMISSION, n, area, plane_offset);
 #else
-  voxel_accumulate_face(base + VOXEL_HDR_WORDS, n, area);
+  voxel_accumulate_face(base + VOXEL_HDR_WORDS, n, area, plane_offset);
 #endif
 #endif
 #endif

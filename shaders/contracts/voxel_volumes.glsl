@@ -11,14 +11,18 @@
 //             average surface plane along that normal, |d| <= 1
 //   emission  rgba16f (optional): rgb emitted radiance, finite and below the half maximum
 //   faces     rgba32ui (optional): the voxel's writers in six groups by the signed axis their
-//             normal leans furthest along (0..5 = +X, -X, +Y, -Y, +Z, -Z), per group the
-//             direction of its mean normal (octahedral, 8+8 bits of 254 steps: words 0-2,
-//             group g in the low (even g) or high half of word g / 2) and its share of the
-//             surfaces' area in the voxel (5 bits, 0..31 / 31, at least 1 for a group that
-//             has any: word 3, bits 5g..5g+4). A voxel that holds a floor and a wall, or the
-//             sides of a column, is lit as the surfaces it holds rather than as one plane with
-//             their mean normal (docs/voxelization.md). Their surfaces lie at the normal
-//             texel's plane offset d along each group's normal. All zero for an empty voxel.
+//             normal leans furthest along (0..5 = +X, -X, +Y, -Y, +Z, -Z). Per group 16 bits
+//             (words 0-2, group g in the low (even g) or high half of word g / 2): the
+//             direction of its mean normal as the point where it crosses the group's cube face
+//             (the two other components over the axis one, 6 bits each, 62 steps over [-1, 1]:
+//             bits 0-5 and 6-11) and its surface plane offset (bits 12-15, 14 steps over
+//             [-1, 1] voxels, rounded up): the signed distance from the voxel centre, along the
+//             group's normal, to the frontmost of its writers' planes. Word 3: per group its
+//             share of the surfaces' area in the voxel (5 bits, 0..31 / 31, at least 1 for a
+//             group that has any: bits 5g..5g+4). A voxel that holds a floor and a wall, or
+//             the sides of a column, is lit as the surfaces it holds rather than as one plane
+//             with their mean normal, each from just in front of its own surfaces
+//             (docs/voxelization.md). All zero for an empty voxel.
 //
 // Lighting is evaluated on the surface (centre + d * n), not at the centre: near a light the
 // centre can be half a voxel closer to it than any surface in the voxel, and 1/r^2 makes that
@@ -57,27 +61,27 @@ float voxel_front_share(vec3 mean_normal, vec3 v) {
 
 const int VOXEL_FACE_GROUPS = 6;
 const float VOXEL_FACE_SHARE_STEPS = 31.0;
+const float VOXEL_FACE_DIRECTION_HALF_STEPS = 31.0;  // codes 0..62, 31 = on the axis
+const float VOXEL_FACE_OFFSET_HALF_STEPS = 7.0;      // codes 0..14, 7 = through the centre
 
-// Octahedral map of a unit vector to [-1, 1]^2 and back.
-vec2 voxel_octahedral_encode(vec3 n) {
-  n /= max(abs(n.x) + abs(n.y) + abs(n.z), 1e-20);
-  vec2 e = n.xy;
-  if (n.z < 0.0) e = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return e;
-}
-vec3 voxel_octahedral_decode(vec2 e) {
-  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-  float t = max(-n.z, 0.0);
-  n.x += n.x >= 0.0 ? -t : t;
-  n.y += n.y >= 0.0 ? -t : t;
-  return normalize(n);
+// The axis of group g, and its two other axes.
+ivec3 voxel_face_axes(int g) {
+  int a = g >> 1;
+  return ivec3(a, (a + 1) % 3, (a + 2) % 3);
 }
 
-// Adds group g (unit mean-normal direction, area share in (0, 1]) to a faces texel.
-uvec4 voxel_pack_face(uvec4 faces, int g, vec3 direction, float share) {
-  // 254 steps, so that 0 (an axis) is exact.
-  uvec2 e = uvec2(round(clamp(voxel_octahedral_encode(direction) * 0.5 + 0.5, 0.0, 1.0) * 254.0));
-  uint bits = e.x | (e.y << 8);
+// Adds group g (unit mean-normal direction leaning furthest along the group's axis, area share
+// in (0, 1], plane offset in voxels) to a faces texel. The offset is rounded up, so that the
+// encoded plane never lies behind a writer's.
+uvec4 voxel_pack_face(uvec4 faces, int g, vec3 direction, float share, float plane_offset) {
+  ivec3 axes = voxel_face_axes(g);
+  float major = max(abs(direction[axes.x]), 1e-6);
+  vec2 face = clamp(vec2(direction[axes.y], direction[axes.z]) / major, -1.0, 1.0);
+  uvec2 e = uvec2(round((face + 1.0) * VOXEL_FACE_DIRECTION_HALF_STEPS));
+  float d = clamp(plane_offset, -1.0, 1.0);
+  uint o = uint(clamp(ceil((d + 1.0) * VOXEL_FACE_OFFSET_HALF_STEPS - 1e-3), 0.0,
+                      2.0 * VOXEL_FACE_OFFSET_HALF_STEPS));
+  uint bits = e.x | (e.y << 6) | (o << 12);
   faces[g >> 1] |= bits << (16 * (g & 1));
   uint steps = uint(clamp(round(share * VOXEL_FACE_SHARE_STEPS), 1.0, VOXEL_FACE_SHARE_STEPS));
   faces.w |= steps << (5 * g);
@@ -88,17 +92,26 @@ uvec4 voxel_pack_face(uvec4 faces, int g, vec3 direction, float share) {
 float voxel_face_share(uvec4 faces, int g) {
   return float((faces.w >> (5 * g)) & 31u) / VOXEL_FACE_SHARE_STEPS;
 }
+uint voxel_face_bits(uvec4 faces, int g) { return (faces[g >> 1] >> (16 * (g & 1))) & 0xFFFFu; }
 vec3 voxel_face_normal(uvec4 faces, int g) {
-  uint bits = (faces[g >> 1] >> (16 * (g & 1))) & 0xFFFFu;
-  vec2 e = vec2(float(bits & 0xFFu), float(bits >> 8)) / 254.0 * 2.0 - 1.0;
-  return voxel_octahedral_decode(e);
+  uint bits = voxel_face_bits(faces, g);
+  ivec3 axes = voxel_face_axes(g);
+  vec3 n;
+  n[axes.x] = (g & 1) == 0 ? 1.0 : -1.0;
+  n[axes.y] = float(bits & 63u) / VOXEL_FACE_DIRECTION_HALF_STEPS - 1.0;
+  n[axes.z] = float((bits >> 6) & 63u) / VOXEL_FACE_DIRECTION_HALF_STEPS - 1.0;
+  return normalize(n);
+}
+// Signed distance in voxels from the voxel centre to group g's frontmost plane, along its normal.
+float voxel_face_offset(uvec4 faces, int g) {
+  return float(voxel_face_bits(faces, g) >> 12) / VOXEL_FACE_OFFSET_HALF_STEPS - 1.0;
 }
 
-// The groups a faces texel holds: their unit normals and their shares, rescaled to add up to
-// exactly 1 (the 5-bit shares only nearly do). Returns how many (0: no faces, e.g. a voxel of
-// average_rgba8 or an empty one).
+// The groups a faces texel holds: their unit normals, their shares, rescaled to add up to
+// exactly 1 (the 5-bit shares only nearly do), and their plane offsets (voxels). Returns how
+// many (0: no faces, e.g. a voxel of average_rgba8 or an empty one).
 int voxel_faces_unpack(uvec4 faces, out vec3 normals[VOXEL_FACE_GROUPS],
-                       out float shares[VOXEL_FACE_GROUPS]) {
+                       out float shares[VOXEL_FACE_GROUPS], out float offsets[VOXEL_FACE_GROUPS]) {
   int count = 0;
   float total = 0.0;
   for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
@@ -106,11 +119,17 @@ int voxel_faces_unpack(uvec4 faces, out vec3 normals[VOXEL_FACE_GROUPS],
     if (share <= 0.0) continue;
     normals[count] = voxel_face_normal(faces, g);
     shares[count] = share;
+    offsets[count] = voxel_face_offset(faces, g);
     total += share;
     ++count;
   }
   for (int i = 0; i < count; ++i) shares[i] /= total;
   return count;
+}
+int voxel_faces_unpack(uvec4 faces, out vec3 normals[VOXEL_FACE_GROUPS],
+                       out float shares[VOXEL_FACE_GROUPS]) {
+  float offsets[VOXEL_FACE_GROUPS];
+  return voxel_faces_unpack(faces, normals, shares, offsets);
 }
 
 float voxel_encode_plane_offset(float d) {

@@ -157,12 +157,14 @@ void main() {
     vec3 irradiance = vec3(0.0);
     int groups = 0;
 #if HAS_FACES
+    // Each group from its own frontmost plane.
     vec3 face_normals[VOXEL_FACE_GROUPS];
-    float face_shares[VOXEL_FACE_GROUPS];
-    groups = voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), face_normals, face_shares);
+    float face_shares[VOXEL_FACE_GROUPS], face_offsets[VOXEL_FACE_GROUPS];
+    groups = voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), face_normals, face_shares,
+                                face_offsets);
     for (int g = 0; g < groups; ++g) {
-      irradiance += face_shares[g] *
-                    surface_irradiance(center + face_normals[g] * offset, face_normals[g], size);
+      vec3 p = center + face_normals[g] * (face_offsets[g] * size);
+      irradiance += face_shares[g] * surface_irradiance(p, face_normals[g], size);
     }
 #endif
     if (groups == 0) {  // no faces volume, or a voxel written without one

@@ -11,7 +11,8 @@
 // going black, and the shadow map still decides whether light reaches it. Output is
 // sanitized HDR. With the faces volume (HAS_FACES) each group of the voxel's writers
 // (contracts/voxel_volumes.glsl: the surfaces that face along one signed axis) is lit as a
-// plane of its own, with its normal, its surface point and its own visibility, and the voxel
+// plane of its own, with its normal, its visibility seen from just in front of its frontmost
+// surface (so a column's or a vault's curve does not put the lookup inside it), and the voxel
 // holds their mean weighted by their share of its surfaces' area: a voxel holding a sunlit
 // floor and a wall turned away is not lit as one plane with their mean normal
 // (docs/voxelization.md).
@@ -146,10 +147,11 @@ void main() {
   int groups = 0;
 #if HAS_FACES
   vec3 face_normals[VOXEL_FACE_GROUPS];
-  float face_shares[VOXEL_FACE_GROUPS];
-  groups = voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), face_normals, face_shares);
+  float face_shares[VOXEL_FACE_GROUPS], face_offsets[VOXEL_FACE_GROUPS];
+  groups = voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), face_normals, face_shares,
+                              face_offsets);
   for (int g = 0; g < groups; ++g) {
-    vec3 p = center + face_normals[g] * offset + voxel_clipmap.anchor.xyz;
+    vec3 p = center + face_normals[g] * (face_offsets[g] * size) + voxel_clipmap.anchor.xyz;
     irradiance += face_shares[g] * surface_irradiance(p, face_normals[g], true, size);
   }
 #endif

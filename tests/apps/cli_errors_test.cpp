@@ -253,7 +253,7 @@ TEST_F(VoxgiCli, GraphCheckRefusesOversizedGraphsAndChecksAMemoryBudget) {
   const ProcessResult over = voxgi(small_budget);
   EXPECT_TRUE(exited_with(over, kError));
   EXPECT_TRUE(stderr_has(over, {"error: field 'resources.voxel.scratch': the graph needs",
-                                "more than the device's 8.00 GiB", "voxel.scratch 2.88 GiB"}));
+                                "more than the device's 8.00 GiB", "voxel.scratch 3.25 GiB"}));
   std::vector<std::string> large_budget = big;
   large_budget.push_back("16GiB");
   EXPECT_TRUE(exited_with(voxgi(large_budget), 0));

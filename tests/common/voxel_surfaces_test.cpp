@@ -246,7 +246,8 @@ TEST_F(VoxelSurfacesTest, VertexColoursUvSetsAndTextureTransformsReachTheVoxels)
 // The faces volume keeps the surfaces of a voxel apart by the way they face, so that injection
 // can light each with its own normal (contracts/voxel_volumes.glsl): a floor meeting a wall
 // gives two groups weighted by their areas in the voxel, the two faces of a thin slab two
-// opposite halves, a plain floor one.
+// opposite halves, a plain floor one; each group's plane offset locates its surfaces (rounded
+// up by at most a 4-bit step, 1/7 voxel, never behind them).
 TEST_F(VoxelSurfacesTest, FacesKeepTheSurfacesOfAVoxelApart) {
   scene::SceneBuilder b("faces");
   const int white = b.add_material(diffuse({0.8f, 0.8f, 0.8f}));
@@ -262,7 +263,7 @@ TEST_F(VoxelSurfacesTest, FacesKeepTheSurfacesOfAVoxelApart) {
   const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   // Expected groups (index, area share) of the voxel holding `world`; the shares add up to 1.
   auto expect_groups = [&](const char* what, const glm::dvec3& world,
-                           const std::vector<std::pair<int, float>>& groups) {
+                           const std::vector<std::pair<int, float>>& groups, float offset) {
     const glm::ivec3 w = glm::ivec3(glm::floor(v.window_coord(0, world)));
     const glm::uvec4 texel = v.faces[v.texel(0, w)];
     float total = 0.0f;
@@ -273,8 +274,8 @@ TEST_F(VoxelSurfacesTest, FacesKeepTheSurfacesOfAVoxelApart) {
         if (group == g) expected_share = share;
       }
       const bool expected = expected_share > 0.0f;
-      std::printf("%s: group %d share %.3f normal %.3f %.3f %.3f\n", what, g, face.share,
-                  face.normal.x, face.normal.y, face.normal.z);
+      std::printf("%s: group %d share %.3f normal %.3f %.3f %.3f plane offset %.3f\n", what, g,
+                  face.share, face.normal.x, face.normal.y, face.normal.z, face.plane_offset);
       if (!expected) {
         EXPECT_EQ(face.share, 0.0f) << what << ", group " << g;
         continue;
@@ -282,14 +283,18 @@ TEST_F(VoxelSurfacesTest, FacesKeepTheSurfacesOfAVoxelApart) {
       // 5-bit shares: within half a step, and a little for the sampled coverage.
       EXPECT_NEAR(face.share, expected_share, 0.6f / 31.0f) << what << ", group " << g;
       EXPECT_GT(glm::dot(face.normal, axes[g]), 0.9995f) << what << ", group " << g;
+      EXPECT_GE(face.plane_offset, offset - 1e-3f) << what << ", group " << g;
+      EXPECT_LE(face.plane_offset, offset + 1.0f / 7.0f + 1e-3f) << what << ", group " << g;
       total += face.share;
     }
     EXPECT_NEAR(total, 1.0f, 1.5f / 31.0f) << what;
   };
-  expect_groups("floor", {4.5, 2.5, 4.5}, {{2, 1.0f}});
+  expect_groups("floor", {4.5, 2.5, 4.5}, {{2, 1.0f}}, 0.0f);
   // The floor covers the voxel's cross-section (area 1), the wall half of it (0.5).
-  expect_groups("floor meeting the wall", {2.5, 2.5, 3.5}, {{0, 1.0f / 3.0f}, {2, 2.0f / 3.0f}});
-  expect_groups("thin slab", {4.5, 5.5, 2.5}, {{2, 0.5f}, {3, 0.5f}});
+  expect_groups("floor meeting the wall", {2.5, 2.5, 3.5}, {{0, 1.0f / 3.0f}, {2, 2.0f / 3.0f}},
+                0.0f);
+  // Each face of the slab lies 0.01 voxel out from the centre along its own normal.
+  expect_groups("thin slab", {4.5, 5.5, 2.5}, {{2, 0.5f}, {3, 0.5f}}, 0.01f);
   // An empty voxel has no groups.
   const glm::ivec3 empty = glm::ivec3(glm::floor(v.window_coord(0, {5.5, 4.5, 5.5})));
   EXPECT_EQ(v.faces[v.texel(0, empty)], glm::uvec4(0u));

@@ -126,13 +126,14 @@ VoxelFace decode_voxel_face(const glm::uvec4& faces, int group) {
   VoxelFace face;
   face.share = float((faces.w >> (5 * group)) & 31u) / 31.0f;
   const uint32_t bits = (faces[group >> 1] >> (16 * (group & 1))) & 0xFFFFu;
-  const glm::vec2 e = glm::vec2(float(bits & 0xFFu), float(bits >> 8)) / 254.0f * 2.0f - 1.0f;
-  // The octahedral map's inverse.
-  glm::vec3 n(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
-  const float t = std::max(-n.z, 0.0f);
-  n.x += n.x >= 0.0f ? -t : t;
-  n.y += n.y >= 0.0f ? -t : t;
+  // The point where the normal crosses the group's cube face, and the plane offset.
+  const int axis = group >> 1;
+  glm::vec3 n;
+  n[axis] = (group & 1) == 0 ? 1.0f : -1.0f;
+  n[(axis + 1) % 3] = float(bits & 63u) / 31.0f - 1.0f;
+  n[(axis + 2) % 3] = float((bits >> 6) & 63u) / 31.0f - 1.0f;
   face.normal = glm::normalize(n);
+  face.plane_offset = float(bits >> 12) / 7.0f - 1.0f;
   return face;
 }
 

@@ -25,6 +25,7 @@ namespace voxgi::test {
 struct VoxelFace {
   glm::vec3 normal{0.0f};
   float share = 0.0f;
+  float plane_offset = 0.0f;  // voxels, to the group's frontmost plane (rounded up)
 };
 VoxelFace decode_voxel_face(const glm::uvec4& faces, int group);
 

@@ -28,13 +28,10 @@ glm::ivec3 clipmap_texel(const ClipmapInfo& info, glm::ivec3 window, int level) 
 glm::vec4 faces_texel(const std::vector<std::pair<int, uint32_t>>& groups) {
   glm::uvec4 faces(0u);
   for (const auto& [g, steps] : groups) {
-    // The octahedral code of the axis normal of group g, 8 bits per coordinate (254 steps).
-    glm::vec3 n(0.0f);
-    n[g >> 1] = (g & 1) == 0 ? 1.0f : -1.0f;
-    glm::vec2 e(n.x, n.y);
-    if (n.z < 0.0f) e = glm::vec2(1.0f - std::abs(n.y), 1.0f - std::abs(n.x));
-    const glm::uvec2 code = glm::uvec2(glm::round((e * 0.5f + 0.5f) * 254.0f));
-    faces[g >> 1] |= (code.x | (code.y << 8)) << (16 * (g & 1));
+    // Group g's axis as its normal (both cube-face coordinates 0: code 31 of 0..62) and its
+    // plane through the voxel centre (offset code 7 of 0..14).
+    const uint32_t code = 31u | (31u << 6) | (7u << 12);
+    faces[g >> 1] |= code << (16 * (g & 1));
     faces.w |= steps << (5 * g);
   }
   return glm::vec4(glm::uintBitsToFloat(faces.x), glm::uintBitsToFloat(faces.y),

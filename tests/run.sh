@@ -26,8 +26,11 @@ if [ "$#" -eq 0 ]; then
     voxgi_passes_vct voxgi_passes_dvs voxgi_passes_lpv voxgi_passes_reference voxgi_fuzz_targets
   # Leak checking needs ptrace, which some containers forbid; memory errors and undefined
   # behaviour are what this stage is for (ASAN_OPTIONS=detect_leaks=1 locally to add leaks).
+  # The mutation fuzzing runs a quarter of its mutations here (the optimized run above did them
+  # all); the coverage-guided fuzzing below searches further.
   for test in "${sanitized_tests[@]}"; do
-    (cd build-sanitize && ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0}" "bin/$test" --gtest_brief=1)
+    (cd build-sanitize && ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=0}" \
+      VOXGI_FUZZ_MUTATIONS="${VOXGI_FUZZ_MUTATIONS:-1000}" "bin/$test" --gtest_brief=1)
   done
   # Coverage-guided fuzzing of the JSON reader, graph files, expressions, bench files and glTF,
   # VOXGI_FUZZ_SECONDS each (tests/fuzz/run-libfuzzer.sh runs them longer locally).

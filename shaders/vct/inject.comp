@@ -94,9 +94,10 @@ vec3 surface_irradiance(vec3 p, vec3 n, bool has_normal, float size) {
     if (attenuation <= 0.0 || cos_theta <= 0.0) continue;
     float visibility = 1.0;
 #if HAS_SHADOWS
-    // Look up from just in front of the surface: p lies on the voxel's average surface plane,
-    // so a small offset suffices, and a larger one would look past occluders lying close in
-    // front of the surface (a lamp's shade just under a ceiling).
+    // Look up from just in front of the surface: p lies on the group's frontmost plane (the
+    // voxel's average surface plane without faces), so a small offset suffices, and a larger
+    // one would look past occluders lying close in front of the surface (a lamp's shade just
+    // under a ceiling).
     vec3 facing = has_normal ? n : l;
     visibility = shadow_visibility(i, p, n, facing, size, pc.normal_offset * size,
                                    distance_to_light);

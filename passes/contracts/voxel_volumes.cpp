@@ -12,4 +12,15 @@ graph::SlotSpec voxel_faces_input() {
       true, {kVoxelFacesFormat});
 }
 
+graph::SlotSpec voxel_light_shares_output() {
+  return {"light_shares",
+          graph::kinds(graph::ResourceKind::Clipmap),
+          graph::Access::StorageWrite,
+          graph::kStageCompute,
+          {kVoxelLightSharesFormat},
+          true,
+          "per face group its share of the voxel's light (contracts/voxel_volumes.glsl), for "
+          "vct.filter; needs faces"};
+}
+
 }  // namespace voxgi::contracts

@@ -1,7 +1,9 @@
 // dvs.voxel_bounce: one indirect diffuse bounce per voxel by cone tracing the filtered
 // radiance volume from each voxel's normal hemisphere (Villegas, "Voxel Global Illumination").
 // Writes direct + albedo/pi * E into the radiance clipmap, which vct.filter filters again for
-// the next bounce or the final gather. graphs/dvs.json chains K of them (docs/dvs.md).
+// the next bounce or the final gather, and with the faces the light shares of that radiance
+// (the direct light's as dvs.voxel_lighting wrote them, the gathered light by area).
+// graphs/dvs.json chains K of them (docs/dvs.md).
 
 #include <memory>
 #include <optional>
@@ -13,6 +15,7 @@
 #include "engine/graph/pass.hpp"
 #include "passes/contracts/filtered_volumes.hpp"
 #include "passes/contracts/voxel_clipmap.hpp"
+#include "passes/contracts/voxel_volumes.hpp"
 #include "passes/dvs/dvs_pipeline.hpp"
 #include "passes/dvs/passes.hpp"
 
@@ -36,7 +39,8 @@ class VoxelBouncePass final : public graph::Pass {
   void setup(graph::PassContext& ctx) override {
     anisotropic_ =
         ctx.has(contracts::kDirectionalSlots[0]);  // all six or none (validate_voxel_bounce)
-    const std::vector<gpu::Binding> bindings = {
+    has_light_shares_ = ctx.has("light_shares");
+    std::vector<gpu::Binding> bindings = {
         {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0, anisotropic_ ? 6u : 1u},
         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
@@ -44,12 +48,18 @@ class VoxelBouncePass final : public graph::Pass {
         {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
         {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0},
     };
+    if (has_light_shares_) {
+      bindings.push_back({6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+      bindings.push_back({7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+      bindings.push_back({8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
+    }
     const char* volumes = anisotropic_ ? contracts::kDirectionalSlots[0] : contracts::kFilteredSlot;
     pipeline_.emplace(graph::make_pass_compute(
         ctx, "dvs/voxel_bounce.comp", bindings, sizeof(BouncePush), false,
         {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
          contracts::unwrapped_windows_define(ctx.info(volumes).clipmap_levels),
-         contracts::refine_levels_define(ctx.integer("refine"))}));
+         contracts::refine_levels_define(ctx.integer("refine")),
+         {"HAS_LIGHT_SHARES", has_light_shares_ ? "1" : "0"}}));
     // The volumes' sampler of the cone-trace contract (no anisotropic filtering): a mipmapped
     // sampler with anisotropy took extra taps around every explicit-LOD sample on lavapipe,
     // which widened each footprint and left the voxel bounces at 0.73 of the path tracer's on
@@ -94,6 +104,14 @@ class VoxelBouncePass final : public graph::Pass {
       writer.sampled_image(2 + i, r.view, r.layout, i == 1 ? repeat : nearest);
     }
     writer.storage_image(5, storage_view(out), out.layout);
+    if (has_light_shares_) {
+      const graph::BoundResource& faces = ctx.resource("faces");
+      const graph::BoundResource& direct_shares = ctx.resource("direct_shares");
+      const graph::BoundResource& shares = ctx.resource("light_shares");
+      writer.sampled_image(6, faces.view, faces.layout, nearest)
+          .sampled_image(7, direct_shares.view, direct_shares.layout, nearest)
+          .storage_image(8, storage_view(shares), shares.layout);
+    }
 
     const VkExtent3D extent = out.info->extent;
     const BouncePush push{{extent.width, extent.height, extent.depth},
@@ -111,7 +129,9 @@ class VoxelBouncePass final : public graph::Pass {
 
  private:
   bool anisotropic_ = false;
-  graph::InputVersions inputs_{{"clipmap_info", "albedo", "normal", "direct"}};
+  bool has_light_shares_ = false;
+  graph::InputVersions inputs_{
+      {"clipmap_info", "albedo", "normal", "direct", "faces", "direct_shares"}};
   std::optional<gpu::ComputePipeline> pipeline_;
   std::unique_ptr<contracts::VolumeSampler> sampler_;
 };
@@ -139,7 +159,12 @@ void validate_voxel_bounce(graph::PassCheck& check) {
                          std::to_string(directional) + " directional volume(s) and " +
                          (isotropic ? "'filtered'" : "no 'filtered'") + " are bound");
   }
-  graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "direct"});
+  graph::check_same_clipmap_layout(
+      check, "radiance", {"albedo", "normal", "direct", "faces", "direct_shares", "light_shares"});
+  if (check.has("light_shares") && !(check.has("faces") && check.has("direct_shares"))) {
+    check.slot_error("light_shares",
+                     "needs the faces and direct_shares inputs bound (shares are per face group)");
+  }
 }
 
 }  // namespace
@@ -166,8 +191,19 @@ void register_voxel_bounce(graph::Registry& registry) {
   info.inputs.push_back(clipmap_input("normal", "voxel averaged normal (xyz), occupancy (w)"));
   info.inputs.push_back(clipmap_input("direct", "direct radiance of dvs.voxel_lighting's 'direct'",
                                       false, {VK_FORMAT_R16G16B16A16_SFLOAT}));
-  info.outputs = {radiance_volume_output(
-      "radiance", "voxel radiance with one more bounce: rgb outgoing diffuse radiance, a opacity")};
+  info.inputs.push_back(clipmap_input(
+      "faces",
+      "the voxels' surfaces grouped by facing (common.voxelize); with direct_shares, the "
+      "gathered light goes to the groups by area in the light shares written",
+      true, {contracts::kVoxelFacesFormat}));
+  info.inputs.push_back(clipmap_input(
+      "direct_shares", "dvs.voxel_lighting's light_shares (with faces and light_shares)", true,
+      {contracts::kVoxelLightSharesFormat}));
+  info.outputs = {
+      radiance_volume_output(
+          "radiance",
+          "voxel radiance with one more bounce: rgb outgoing diffuse radiance, a opacity"),
+      contracts::voxel_light_shares_output()};
   info.params = {
       {"diffuse_cones",
        graph::ParamType::Int,
@@ -205,6 +241,7 @@ void register_voxel_bounce(graph::Registry& registry) {
       contracts::refine_levels_param(),
   };
   graph::set_size_rule(info, "radiance", graph::same_layout_as("direct"));
+  graph::set_size_rule(info, "light_shares", graph::same_layout_as("direct"));
   info.may_skip = true;
   info.validate = validate_voxel_bounce;
   registry.add(std::move(info), [] { return std::make_unique<VoxelBouncePass>(); });

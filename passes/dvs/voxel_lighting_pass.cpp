@@ -1,6 +1,7 @@
 // dvs.voxel_lighting: per-voxel direct lighting (Villegas, deferred voxel shading §2). Reads the
 // voxelized albedo, normal and emission clipmaps and writes the radiance clipmap of the voxel
-// contract (rgb outgoing diffuse radiance, a opacity). Only lights or voxels changing make it
+// contract (rgb outgoing diffuse radiance, a opacity), and with the faces each face group's
+// share of that light (light_shares, for vct.filter). Only lights or voxels changing make it
 // run again: when the voxelization skipped and no light moved, it skips too, and when only
 // lights changed it re-lights the existing voxels without a revoxelization.
 
@@ -40,6 +41,8 @@ class VoxelLightingPass final : public graph::Pass {
     has_shadow_maps_ = ctx.has("shadow_maps") && ctx.has("shadow_matrices");
     has_direct_ = ctx.has("direct");
     has_faces_ = ctx.has("faces");
+    has_light_shares_ = has_faces_ && ctx.has("light_shares");
+    // The shares are kept for the bounces as the radiance is (validate_voxel_lighting).
     std::vector<gpu::Binding> bindings = {
         {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
         {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
@@ -53,12 +56,17 @@ class VoxelLightingPass final : public graph::Pass {
     }
     if (has_direct_) bindings.push_back({7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
     if (has_faces_) bindings.push_back({8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
-    pipeline_.emplace(graph::make_pass_compute(ctx, "dvs/voxel_lighting.comp", bindings,
-                                               sizeof(LightingPush), true,
-                                               {{"HAS_EMISSION", has_emission_ ? "1" : "0"},
-                                                {"HAS_SHADOW_MAPS", has_shadow_maps_ ? "1" : "0"},
-                                                {"HAS_DIRECT_COPY", has_direct_ ? "1" : "0"},
-                                                {"HAS_FACES", has_faces_ ? "1" : "0"}}));
+    if (has_light_shares_) bindings.push_back({9, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
+    if (has_light_shares_ && has_direct_) {
+      bindings.push_back({10, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
+    }
+    pipeline_.emplace(graph::make_pass_compute(
+        ctx, "dvs/voxel_lighting.comp", bindings, sizeof(LightingPush), true,
+        {{"HAS_EMISSION", has_emission_ ? "1" : "0"},
+         {"HAS_SHADOW_MAPS", has_shadow_maps_ ? "1" : "0"},
+         {"HAS_DIRECT_COPY", has_direct_ ? "1" : "0"},
+         {"HAS_FACES", has_faces_ ? "1" : "0"},
+         {"HAS_LIGHT_SHARES", has_light_shares_ ? "1" : "0"}}));
     inputs_.forget();
   }
 
@@ -90,6 +98,14 @@ class VoxelLightingPass final : public graph::Pass {
     if (has_faces_) {
       const graph::BoundResource& faces = ctx.resource("faces");
       writer.sampled_image(8, faces.view, faces.layout, nearest);
+    }
+    if (has_light_shares_) {
+      const graph::BoundResource& shares = ctx.resource("light_shares");
+      writer.storage_image(9, storage_view(shares), shares.layout);
+      if (has_direct_) {
+        const graph::BoundResource& direct_shares = ctx.resource("direct_shares");
+        writer.storage_image(10, storage_view(direct_shares), direct_shares.layout);
+      }
     }
     if (has_direct_) {
       const graph::BoundResource& direct = ctx.resource("direct");
@@ -124,6 +140,7 @@ class VoxelLightingPass final : public graph::Pass {
   bool has_shadow_maps_ = false;
   bool has_direct_ = false;
   bool has_faces_ = false;
+  bool has_light_shares_ = false;
   graph::InputVersions inputs_{
       {"clipmap_info", "albedo", "normal", "emission", "faces", "shadow_maps", "shadow_matrices"}};
   std::optional<gpu::ComputePipeline> pipeline_;
@@ -131,8 +148,17 @@ class VoxelLightingPass final : public graph::Pass {
 
 void validate_voxel_lighting(graph::PassCheck& check) {
   contracts::check_clipmap_info_size(check);
-  graph::check_same_clipmap_layout(check, "radiance",
-                                   {"albedo", "normal", "emission", "direct", "faces"});
+  graph::check_same_clipmap_layout(
+      check, "radiance",
+      {"albedo", "normal", "emission", "direct", "faces", "light_shares", "direct_shares"});
+  if (check.has("light_shares") && !check.has("faces")) {
+    check.slot_error("light_shares", "needs the faces input bound (shares are per face group)");
+  }
+  if (check.has("light_shares") && check.has("direct") != check.has("direct_shares")) {
+    check.slot_error("direct_shares",
+                     "bind it exactly when 'direct' is (the bounces need the direct light's "
+                     "shares with the direct light)");
+  }
 }
 
 }  // namespace
@@ -156,6 +182,14 @@ void register_voxel_lighting(graph::Registry& registry) {
       radiance_volume_output("radiance",
                              "voxel radiance: rgb outgoing diffuse radiance, a opacity (mip 0)"),
       radiance_volume_output("direct", "the same values, kept for dvs.voxel_bounce", true),
+      contracts::voxel_light_shares_output(),
+      {"direct_shares",
+       graph::kinds(graph::ResourceKind::Clipmap),
+       graph::Access::StorageWrite,
+       graph::kStageCompute,
+       {contracts::kVoxelLightSharesFormat},
+       true,
+       "the same light shares, kept for dvs.voxel_bounce (with direct and light_shares)"},
   };
   info.params = {
       {"occlusion",
@@ -194,6 +228,8 @@ void register_voxel_lighting(graph::Registry& registry) {
   };
   graph::set_size_rule(info, "radiance", graph::same_layout_as("albedo"));
   graph::set_size_rule(info, "direct", graph::same_layout_as("albedo"));
+  graph::set_size_rule(info, "light_shares", graph::same_layout_as("albedo"));
+  graph::set_size_rule(info, "direct_shares", graph::same_layout_as("albedo"));
   info.may_skip = true;
   info.validate = validate_voxel_lighting;
   registry.add(std::move(info), [] { return std::make_unique<VoxelLightingPass>(); });

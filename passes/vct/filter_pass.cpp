@@ -33,6 +33,7 @@ struct FilterPush {
 constexpr uint32_t kLocal = 4;
 constexpr uint32_t kNormalBinding = 14;
 constexpr uint32_t kFacesBinding = 15;
+constexpr uint32_t kLightSharesBinding = 16;
 
 class FilterPass final : public graph::Pass {
  public:
@@ -46,6 +47,7 @@ class FilterPass final : public graph::Pass {
     }
     level_coverage_ = ctx.has("normal");
     face_facing_ = ctx.has("faces");
+    light_shares_ = face_facing_ && anisotropic_ && ctx.has("light_shares");
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0}};
     for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
@@ -58,11 +60,15 @@ class FilterPass final : public graph::Pass {
     if (face_facing_) {
       bindings.push_back({kFacesBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
     }
+    if (light_shares_) {
+      bindings.push_back({kLightSharesBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+    }
     pipeline_.emplace(graph::make_pass_compute(ctx, "vct/filter.comp", bindings, sizeof(FilterPush),
                                                false,
                                                {{"ANISOTROPIC", anisotropic_ ? "1" : "0"},
                                                 {"LEVEL_COVERAGE", level_coverage_ ? "1" : "0"},
-                                                {"FACE_FACING", face_facing_ ? "1" : "0"}}));
+                                                {"FACE_FACING", face_facing_ ? "1" : "0"},
+                                                {"LIGHT_SHARES", light_shares_ ? "1" : "0"}}));
     versions_.forget();
   }
 
@@ -95,6 +101,11 @@ class FilterPass final : public graph::Pass {
       if (face_facing_) {
         const graph::BoundResource& faces = ctx.resource("faces");
         writer.sampled_image(kFacesBinding, faces.view, faces.layout,
+                             ctx.gpu().sampler(gpu::SamplerKind::NearestClamp));
+      }
+      if (light_shares_) {
+        const graph::BoundResource& shares = ctx.resource("light_shares");
+        writer.sampled_image(kLightSharesBinding, shares.view, shares.layout,
                              ctx.gpu().sampler(gpu::SamplerKind::NearestClamp));
       }
       for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
@@ -135,9 +146,10 @@ class FilterPass final : public graph::Pass {
   bool anisotropic_ = true;
   bool level_coverage_ = false;
   bool face_facing_ = false;
+  bool light_shares_ = false;
   std::vector<std::string> volume_slots_;
   std::optional<gpu::ComputePipeline> pipeline_;
-  graph::InputVersions versions_{{"clipmap_info", "radiance", "normal", "faces"}};
+  graph::InputVersions versions_{{"clipmap_info", "radiance", "normal", "faces", "light_shares"}};
 };
 
 void validate_filter(graph::PassCheck& check) {
@@ -152,9 +164,9 @@ void validate_filter(graph::PassCheck& check) {
                       "pos_z, neg_z bound; unbound: " +
                           missing);
   }
-  graph::check_same_clipmap_layout(
-      check, "radiance",
-      {contracts::kFilteredSlot, "normal", "pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"});
+  graph::check_same_clipmap_layout(check, "radiance",
+                                   {contracts::kFilteredSlot, "normal", "faces", "light_shares",
+                                    "pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"});
 }
 
 graph::SlotSpec filtered_output(const char* name, std::string doc) {
@@ -191,8 +203,14 @@ void register_filter(graph::Registry& registry) {
       graph::sampled_clipmap_input(
           "faces",
           "the voxels' surfaces grouped by facing (common.voxelize); with them, a voxel's light "
-          "enters each directional volume less the share of its surfaces that face away",
-          true, {contracts::kVoxelFacesFormat})};
+          "enters each directional volume as its surfaces show it that way (anisotropic)",
+          true, {contracts::kVoxelFacesFormat}),
+      graph::sampled_clipmap_input(
+          "light_shares",
+          "per face group its share of the voxel's light (the injection's light_shares); with "
+          "the faces, each group sends its own light; unbound: the voxel's groups are taken as "
+          "lit alike",
+          true, {contracts::kVoxelLightSharesFormat})};
   info.outputs = {filtered_output("filtered", "isotropic filtered volume (mode isotropic)")};
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   for (size_t i = 0; i < contracts::kDirectionalSlots.size(); ++i) {

@@ -1,8 +1,9 @@
 // vct.inject: direct light into the radiance clipmap. Each occupied voxel gets the outgoing
 // Lambert radiance albedo/pi x sum(light irradiance x cos x shadow-map visibility) plus its
 // emission, rgba16f and sanitized (shaders/vct/inject.comp states the rules); with the
-// voxelizer's faces, per way its surfaces face, weighted by their area. The pass skips
-// when none of its inputs was rewritten and the lights did not change.
+// voxelizer's faces, per way its surfaces face, weighted by their area, and (output
+// light_shares) each way's share of that light, for vct.filter. The pass skips when none of
+// its inputs was rewritten and the lights did not change.
 
 #include <algorithm>
 #include <memory>
@@ -41,21 +42,24 @@ class InjectPass final : public graph::Pass {
     has_shadows_ = ctx.has("shadow_maps") && ctx.has("shadow_matrices");
     has_emission_ = ctx.has("emission");
     has_faces_ = ctx.has("faces");
+    has_light_shares_ = has_faces_ && ctx.has("light_shares");
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
                                           {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
                                           {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0}};
     if (has_emission_) bindings.push_back({3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
     if (has_faces_) bindings.push_back({7, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+    if (has_light_shares_) bindings.push_back({8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
     if (has_shadows_) {
       bindings.push_back({4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
       bindings.push_back({5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0});
     }
-    pipeline_.emplace(graph::make_pass_compute(ctx, "vct/inject.comp", bindings, sizeof(InjectPush),
-                                               true,
-                                               {{"HAS_SHADOWS", has_shadows_ ? "1" : "0"},
-                                                {"HAS_EMISSION", has_emission_ ? "1" : "0"},
-                                                {"HAS_FACES", has_faces_ ? "1" : "0"}}));
+    pipeline_.emplace(
+        graph::make_pass_compute(ctx, "vct/inject.comp", bindings, sizeof(InjectPush), true,
+                                 {{"HAS_SHADOWS", has_shadows_ ? "1" : "0"},
+                                  {"HAS_EMISSION", has_emission_ ? "1" : "0"},
+                                  {"HAS_FACES", has_faces_ ? "1" : "0"},
+                                  {"HAS_LIGHT_SHARES", has_light_shares_ ? "1" : "0"}}));
     versions_.forget();
   }
 
@@ -85,6 +89,10 @@ class InjectPass final : public graph::Pass {
       const graph::BoundResource& faces = ctx.resource("faces");
       writer.sampled_image(7, faces.view, faces.layout, nearest);
     }
+    if (has_light_shares_) {
+      const graph::BoundResource& shares = ctx.resource("light_shares");
+      writer.storage_image(8, shares.image->view(0), shares.layout);
+    }
     InjectPush push{0, static_cast<float>(ctx.number("normal_offset")),
                     ctx.flag("shadows") ? 1u : 0u, 0.0f};
     if (has_shadows_) {
@@ -104,6 +112,7 @@ class InjectPass final : public graph::Pass {
   bool has_shadows_ = false;
   bool has_emission_ = false;
   bool has_faces_ = false;
+  bool has_light_shares_ = false;
   std::optional<gpu::ComputePipeline> pipeline_;
   graph::InputVersions versions_{
       {"clipmap_info", "albedo", "normal", "emission", "faces", "shadow_maps", "shadow_matrices"}};
@@ -135,7 +144,8 @@ void register_inject(graph::Registry& registry) {
                    graph::kStageCompute,
                    {VK_FORMAT_R16G16B16A16_SFLOAT},
                    false,
-                   "radiance clipmap: rgb outgoing radiance, a opacity (mip 0 written)"}};
+                   "radiance clipmap: rgb outgoing radiance, a opacity (mip 0 written)"},
+                  contracts::voxel_light_shares_output()};
   info.params = {
       {"shadows", graph::ParamType::Bool, 1.0, 0.0, 1.0, {}, "test the shadow maps", true},
       {"normal_offset",
@@ -149,10 +159,15 @@ void register_inject(graph::Registry& registry) {
        true},
   };
   graph::set_size_rule(info, "radiance", graph::same_layout_as("albedo"));
+  graph::set_size_rule(info, "light_shares", graph::same_layout_as("albedo"));
   info.may_skip = true;
   info.validate = [](graph::PassCheck& check) {
     contracts::check_clipmap_info_size(check);
-    graph::check_same_clipmap_layout(check, "radiance", {"albedo", "normal", "emission", "faces"});
+    graph::check_same_clipmap_layout(check, "radiance",
+                                     {"albedo", "normal", "emission", "faces", "light_shares"});
+    if (check.has("light_shares") && !check.has("faces")) {
+      check.slot_error("light_shares", "needs the faces input bound (shares are per face group)");
+    }
   };
   registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });
 }

@@ -20,9 +20,10 @@
 //   Volume +X is what a cone travelling in +X sees: each voxel is the average over the four
 //   child columns of the front-to-back composite along +X (children at lower x in front).
 //   Voxels with no finer data (level 0 mip 0, the part of a level no finer level covers) hold
-//   the injected value in all six. Where vct.filter has the voxels' faces, such a voxel enters
-//   the filter of volume d less the area share of its surfaces that face away from a cone
-//   travelling along d; where vct.filter has the voxel normals, the voxels of a
+//   the injected value in all six; where vct.filter has the voxels' faces, in volume d the
+//   light their surfaces show a cone travelling along d (each face group's own light where the
+//   injection wrote light shares: a thin wall's lit face's towards its lit side only, none
+//   through it); where vct.filter has the voxel normals, the voxels of a
 //   coarser level l > 0 among them hold the opacity that filtering a surface voxelized at the
 //   finest level would have given them (along axis k a (|n_k| + (1 - |n_k|) / 2^l); isotropic:
 //   the fraction of fine voxels the surface fills).
@@ -207,11 +208,13 @@ vec4 vct_fetch_directional(vec3 p, vec3 dir, int level, int mip) {
 // column, the unlit underside of a sunlit slab). n4 is the voxel normal texel interpolated like
 // the volumes (contracts/voxel_volumes.glsl: xyz the mean of the writers' unit normals, w
 // about 1 where occupied, so xyz / w is the occupied voxels' mean normal). The share of the
-// voxel's surface that faces the cone (voxel_front_share) follows from how far the writers
-// agree: all of it or none for one plane, a part for a corner, a moulding or a column seen
-// from the side, half for a thin wall's two faces. (A test only where |mean| >= 0.8 sent the
-// full light of the voxels below, up to a third of Sponza's coarse ones, towards their backs:
-// docs/error-budget.md, eighth round.)
+// voxel's footprint its front faces cover (voxel_front_share) follows from how far the
+// writers agree: all of it or none for one plane, a part for a corner seen from behind one of
+// its walls; all of it for a thin wall's two faces or a column, whose fronts hide their backs
+// (which face's light shows, vct.filter's directional volumes already tell). This refines
+// between the six axes, continuously in the cone's direction, what those volumes hold per
+// axis. (A test only where |mean| >= 0.8 sent the full light of the voxels below, up to a
+// third of Sponza's coarse ones, towards their backs: docs/error-budget.md, eighth round.)
 float vct_facing(vec4 n4, vec3 dir) {
   if (!(n4.w > 0.05)) return 1.0;
   return voxel_front_share(n4.xyz / n4.w, -dir);

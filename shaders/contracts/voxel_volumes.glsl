@@ -45,18 +45,24 @@ float voxel_mean_clamped_cosine(float len, float c) {
   return (2.0 * len - 1.0) * max(c, 0.0) + (1.0 - len) * 0.5 * (1.0 + c);
 }
 
-// The share of a voxel's surface seen from direction v (unit, towards the viewer) that faces
-// the viewer: projected front area over all projected area, mean max(n.v, 0) over mean
-// |n.v|, from the mean normal m (the normal texel's xyz, any length up to 1) as above. 1 or 0
-// for one plane in front or behind, 1/2 where the writers cancel (a thin wall's two faces).
+// The share of a voxel's footprint seen from direction v (unit, towards the viewer) that its
+// front faces cover, from the mean normal m (the normal texel's xyz, any length up to 1) as
+// above: the projected front area F = mean max(n.v, 0) and back area B = mean max(-n.v, 0).
+// Where both are there, each front face hides as much back area as its own (the two faces of
+// a thin wall, the near and far side of a column), so the footprint is max(F, B) and the
+// fronts cover F / max(F, B) of it: 1 or 0 for one plane in front or behind, 1 where the
+// writers cancel (a closed surface: what shows is its front, whose light
+// contracts/voxel_volumes.glsl's light shares tell), less than 1 where a surface's back hides
+// part of another's front (a corner seen from behind one of its walls).
 float voxel_front_share(vec3 mean_normal, vec3 v) {
   float len = length(mean_normal);
-  if (!(len >= 1e-6) || isinf(len)) return 0.5;
+  if (!(len >= 1e-6) || isinf(len)) return 1.0;
   float c = dot(mean_normal / len, v);
   len = min(len, 1.0);
   float front = voxel_mean_clamped_cosine(len, c);
   float back = voxel_mean_clamped_cosine(len, -c);
-  return front + back > 1e-6 ? front / (front + back) : 0.5;
+  float footprint = max(front, back);
+  return footprint > 1e-6 ? front / footprint : 1.0;
 }
 
 const int VOXEL_FACE_GROUPS = 6;
@@ -130,6 +136,21 @@ int voxel_faces_unpack(uvec4 faces, out vec3 normals[VOXEL_FACE_GROUPS],
                        out float shares[VOXEL_FACE_GROUPS]) {
   float offsets[VOXEL_FACE_GROUPS];
   return voxel_faces_unpack(faces, normals, shares, offsets);
+}
+
+// Light shares (r32ui, optional, written by an injection beside its radiance clipmap): per
+// face group g (the groups of the faces texel), the share of the voxel's outgoing light
+// (luminance times area) that the group's surfaces send, 5 bits at bit 5g (0..31 / 31). A voxel
+// whose groups are lit alike holds their area shares; a thin wall lit on one face holds all of
+// its light in that face's group, so that vct.filter sends it only that way. 0: no light, or
+// no faces (the voxel's light is then spread as its area is).
+const float VOXEL_LIGHT_SHARE_STEPS = 31.0;
+float voxel_luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+uint voxel_pack_light_share(uint shares, int g, float share) {
+  return shares | (uint(round(clamp(share, 0.0, 1.0) * VOXEL_LIGHT_SHARE_STEPS)) << (5 * g));
+}
+float voxel_light_share(uint shares, int g) {
+  return float((shares >> (5 * g)) & 31u) / VOXEL_LIGHT_SHARE_STEPS;
 }
 
 float voxel_encode_plane_offset(float d) {

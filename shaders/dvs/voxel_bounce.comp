@@ -24,6 +24,17 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(set = 0, binding = 2) uniform sampler3D voxel_albedo;
 layout(set = 0, binding = 4) uniform sampler3D direct_radiance;
 layout(set = 0, binding = 5, rgba16f) writeonly uniform image3D out_radiance;
+#ifndef HAS_LIGHT_SHARES
+#define HAS_LIGHT_SHARES 0
+#endif
+#if HAS_LIGHT_SHARES
+// The voxels' face groups, the direct light's shares among them, and the shares of the light
+// written here (contracts/voxel_volumes.glsl), for vct.filter: the direct light keeps its
+// shares, the bounce, gathered around the voxel's mean normal, goes to the groups by area.
+layout(set = 0, binding = 6) uniform usampler3D voxel_faces;
+layout(set = 0, binding = 7) uniform usampler3D direct_shares;
+layout(set = 0, binding = 8, r32ui) writeonly uniform uimage3D out_light_shares;
+#endif
 
 layout(push_constant) uniform Push {
   uvec3 size;  // the stacked image: (R, R, R * L)
@@ -40,6 +51,7 @@ void main() {
   int level = dvs_texel_level(texel);
   vec4 direct = texelFetch(direct_radiance, texel, 0);
   vec3 radiance = sanitize_radiance(direct.rgb);
+  vec3 bounce = vec3(0.0);
   float opacity = isnan(direct.a) ? 0.0 : clamp(direct.a, 0.0, 1.0);
   vec4 albedo = texelFetch(voxel_albedo, texel, 0);
   vec3 n = texelFetch(voxel_normal, texel, 0).xyz;
@@ -75,8 +87,29 @@ void main() {
       // though every uniform turn stays within 0.98-1.00 there: not understood yet.
       vec3 irradiance = vct_diffuse_irradiance(surface, unit_n, pc.cones, 0.0, 0.5,
                                                (pc.normal_offset - plane) * size, s, visibility);
-      radiance += albedo.rgb * (1.0 / VCT_PI) * sanitize_radiance(irradiance);
+      bounce = albedo.rgb * (1.0 / VCT_PI) * sanitize_radiance(irradiance);
+      radiance += bounce;
     }
   }
   imageStore(out_radiance, texel, vec4(sanitize_radiance(radiance), opacity));
+#if HAS_LIGHT_SHARES
+  uvec4 faces = texelFetch(voxel_faces, texel, 0);
+  uint lit = texelFetch(direct_shares, texel, 0).r;
+  float direct_light = voxel_luminance(radiance - bounce), bounce_light = voxel_luminance(bounce);
+  float area = 0.0, lit_total = 0.0;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    area += voxel_face_share(faces, g);
+    lit_total += voxel_light_share(lit, g);
+  }
+  uint shares = 0u;
+  float light = direct_light + bounce_light;
+  if (area > 0.0 && light > 0.0 && !isinf(light)) {
+    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+      float s = voxel_face_share(faces, g) / area;
+      float d = lit_total > 0.0 ? voxel_light_share(lit, g) / lit_total : s;
+      shares = voxel_pack_light_share(shares, g, (d * direct_light + s * bounce_light) / light);
+    }
+  }
+  imageStore(out_light_shares, texel, uvec4(shares));
+#endif
 }

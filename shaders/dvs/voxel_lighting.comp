@@ -46,6 +46,17 @@ layout(set = 0, binding = 7, rgba16f) writeonly uniform image3D out_direct;
 #if HAS_FACES
 layout(set = 0, binding = 8) uniform usampler3D voxel_faces;
 #endif
+#ifndef HAS_LIGHT_SHARES
+#define HAS_LIGHT_SHARES 0
+#endif
+#if HAS_LIGHT_SHARES
+// Per face group its share of the voxel's light (contracts/voxel_volumes.glsl), for vct.filter;
+// with HAS_DIRECT_COPY also kept for dvs.voxel_bounce, as the radiance is.
+layout(set = 0, binding = 9, r32ui) writeonly uniform uimage3D out_light_shares;
+#if HAS_DIRECT_COPY
+layout(set = 0, binding = 10, r32ui) writeonly uniform uimage3D out_direct_shares;
+#endif
+#endif
 
 const uint OCCLUSION_NONE = 0u;
 const uint OCCLUSION_SHADOW_MAP = 1u;
@@ -146,6 +157,8 @@ void main() {
 #if HAS_EMISSION
   radiance += sanitize_radiance(texelFetch(voxel_emission, texel, 0).rgb);
 #endif
+  vec3 emission = radiance;
+  uint light_shares = 0u;
   bool occupied = albedo.a > 0.0 || normal.w > 0.0;
   if (occupied && voxel_level_valid(level)) {
     float size = voxel_size(level);
@@ -157,14 +170,30 @@ void main() {
     vec3 irradiance = vec3(0.0);
     int groups = 0;
 #if HAS_FACES
-    // Each group from its own frontmost plane.
-    vec3 face_normals[VOXEL_FACE_GROUPS];
-    float face_shares[VOXEL_FACE_GROUPS], face_offsets[VOXEL_FACE_GROUPS];
-    groups = voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), face_normals, face_shares,
-                                face_offsets);
-    for (int g = 0; g < groups; ++g) {
-      vec3 p = center + face_normals[g] * (face_offsets[g] * size);
-      irradiance += face_shares[g] * surface_irradiance(p, face_normals[g], size);
+    // Each group from its own frontmost plane; and its light (luminance x area share), for
+    // the light shares.
+    uvec4 faces = texelFetch(voxel_faces, texel, 0);
+    float area = 0.0;
+    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) area += voxel_face_share(faces, g);
+    float group_light[VOXEL_FACE_GROUPS];
+    float light = 0.0;
+    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+      group_light[g] = 0.0;
+      float share = voxel_face_share(faces, g);
+      if (share <= 0.0) continue;
+      share /= area;
+      vec3 n = voxel_face_normal(faces, g);
+      vec3 p = center + n * (voxel_face_offset(faces, g) * size);
+      vec3 e = surface_irradiance(p, n, size);
+      irradiance += share * e;
+      group_light[g] = share * voxel_luminance(albedo.rgb * (1.0 / 3.14159265358979) * e + emission);
+      light += group_light[g];
+      ++groups;
+    }
+    if (light > 0.0 && !isinf(light)) {
+      for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+        light_shares = voxel_pack_light_share(light_shares, g, group_light[g] / light);
+      }
     }
 #endif
     if (groups == 0) {  // no faces volume, or a voxel written without one
@@ -177,5 +206,11 @@ void main() {
   imageStore(out_radiance, texel, result);
 #if HAS_DIRECT_COPY
   imageStore(out_direct, texel, result);
+#endif
+#if HAS_LIGHT_SHARES
+  imageStore(out_light_shares, texel, uvec4(light_shares));
+#if HAS_DIRECT_COPY
+  imageStore(out_direct_shares, texel, uvec4(light_shares));
+#endif
 #endif
 }

@@ -5,13 +5,13 @@
 //   STAGE_LEVEL: mip 0 of one clipmap level. Where the next finer level covers a voxel's eight
 //     children, the voxel is their filter (levels agree); elsewhere the injected radiance,
 //     premultiplied, with (LEVEL_COVERAGE) the opacity (along each axis when anisotropic) that
-//     the filter would have given a surface voxelized at the finest level's thickness. Levels
-//     run finest first, so level l-1 is final when level l reads it.
+//     the filter would have given a surface voxelized at the finest level's thickness, and
+//     (anisotropic, FACE_FACING) in each direction the light its surfaces show that way, from
+//     their face groups and (LIGHT_SHARES) each group's share of the light (directional_light).
+//     Levels run finest first, so level l-1 is final when level l reads it.
 //   STAGE_MIP: mip m of every level from mip m-1 of the same level (texel t <- 2t + {0,1}^3).
 // Isotropic: box filter of the 8 children. Anisotropic (ANISOTROPIC=1): per direction, the
-// front-to-back composite of each child pair along the axis, averaged over the 4 columns; with
-// the voxels' faces (FACE_FACING), a child that holds its own injected light enters the
-// composite of a direction without the light of its surfaces that face away from it.
+// front-to-back composite of each child pair along the axis, averaged over the 4 columns.
 // NaN/Inf and out-of-range values are scrubbed when read. The filter works on, and stores,
 // premultiplied radiance and opacity (contracts/vct_volume_encoding.glsl).
 #include "lib/common.glsl"
@@ -128,45 +128,71 @@ bool finer_level_covers(int level, ivec3 window) {
          all(lessThan(first + 1, ivec3(voxel_resolution())));
 }
 
-#if FACE_FACING
+#if FACE_FACING && ANISOTROPIC
+#ifndef LIGHT_SHARES
+#define LIGHT_SHARES 0
+#endif
+#if LIGHT_SHARES
+layout(set = 0, binding = 16) uniform usampler3D light_shares;
+#endif
 
-// The share of a voxel's light that reaches a cone travelling along `volume`'s axis: all of
-// it less the area share of its surfaces facing away from the cone's origin, each by how far
-// it faces away (|cos|). A sunlit floor's voxels thus send nothing down through it, a wall's
-// nothing out of its back, and a thin wall's voxels holding both faces half each way, while
-// surfaces seen edge-on along the axis keep their light: a cone that travels along x and down
-// reads the floor through both its x and its -y volume, and the floor must look as bright in
-// both (halving edge-on surfaces made every view 15-30 points dark; docs/error-budget.md).
-// The cone tracer's per-sample facing test covers the voxels it reads at mip 0 of the finest
-// level; this covers every composite built from them.
-// (Called once per direction for each lit child: working out all six at once per child, in
-// arrays handed to filter_children, measured 2-3 times slower on lavapipe.)
-float volume_facing(uvec4 faces, int volume) {
-  vec3 normals[VOXEL_FACE_GROUPS];
-  float shares[VOXEL_FACE_GROUPS];
-  int count = voxel_faces_unpack(faces, normals, shares);
-  if (count == 0) return 1.0;
+// How bright a voxel that holds its own injected light looks to a cone travelling along
+// `volume`'s axis t, relative to its mean radiance (the injected value): from its face groups'
+// normals n_g, area shares s_g and light shares l_g (contracts/voxel_volumes.glsl; the area
+// shares where the injection wrote none). Along t a group shows the part |n_g.t| of its area
+// towards the cone (n_g.t < 0: T in all) or away from it (A), and keeps the rest of its light
+// seen edge-on (E): a cone travelling along x and down reads a floor through both its x and
+// its -y volume, and the floor must look as bright in both (halving edge-on surfaces made
+// every view 15-30 points dark; docs/error-budget.md). Each face towards the cone hides as
+// much back area as its own, so the voxel's footprint is max(T, A) + E, and the fronts send
+// their light over it:
+//   factor = (sum over fronts of l_g |n_g.t| + sum of l_g (1 - |n_g.t|)) / (max(T, A) + E).
+// A sunlit floor's voxels thus send nothing down through it and a wall's nothing out of its
+// back; a thin wall lit on one face sends that face's light (twice the voxel's mean) towards
+// its lit side and none through; a voxel whose groups are lit alike is never brighter than its
+// mean. The cone tracer's facing test (contracts/cone_trace.glsl) refines this between the
+// axes at the finest level's mip 0.
+float directional_light(ivec3 texel, int volume) {
+  uvec4 faces = texelFetch(voxel_faces, texel, 0);
+  uint lit = 0u;
+#if LIGHT_SHARES
+  lit = texelFetch(light_shares, texel, 0).r;
+#endif
   int axis = volume / 2;
   float travel = (volume & 1) == 0 ? 1.0 : -1.0;
-  float away = 0.0;
-  for (int g = 0; g < count; ++g) away += shares[g] * max(normals[g][axis] * travel, 0.0);
-  return clamp(1.0 - away, 0.0, 1.0);
+  float area = 0.0, light = 0.0;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    area += voxel_face_share(faces, g);
+    light += voxel_light_share(lit, g);
+  }
+  if (!(area > 0.0)) return 1.0;
+  bool by_area = !(light > 0.0);
+  float towards = 0.0, away = 0.0, edge = 0.0, shown = 0.0;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    float s = voxel_face_share(faces, g) / area;
+    if (s <= 0.0) continue;
+    float l = by_area ? s : voxel_light_share(lit, g) / light;
+    float c = voxel_face_normal(faces, g)[axis] * travel;
+    float projected = abs(c);
+    if (c < 0.0) {
+      towards += s * projected;
+      shown += l * projected;
+    } else {
+      away += s * projected;
+    }
+    edge += s * (1.0 - projected);
+    shown += l * (1.0 - projected);
+  }
+  float footprint = max(towards, away) + edge;
+  return footprint > 1e-6 ? shown / footprint : 0.0;
 }
 #endif
 
 // The filtered value for `volume` from its 8 children's texels, ordered x fastest (child i
 // has offset (i & 1, (i >> 1) & 1, (i >> 2) & 1)).
-vec4 filter_children(int volume, ivec3 child[8], bool own[8]) {
+vec4 filter_children(int volume, ivec3 child[8]) {
   vec4 c[8];
-  for (int i = 0; i < 8; ++i) {
-    c[i] = load_src(volume, child[i]);
-#if FACE_FACING && ANISOTROPIC
-    // Only a child that has light needs its faces (most voxels are dark or empty).
-    if (own[i] && any(greaterThan(c[i].rgb, vec3(0.0)))) {
-      c[i].rgb *= volume_facing(texelFetch(voxel_faces, child[i], 0), volume);
-    }
-#endif
-  }
+  for (int i = 0; i < 8; ++i) c[i] = load_src(volume, child[i]);
 #if ANISOTROPIC
   // Volume 2k+s looks along axis k, s = 0 positive (lower coordinate in front), 1 negative.
   int axis = volume / 2;
@@ -227,25 +253,28 @@ void main() {
     if (finer_level_covers(level, id)) {
       ivec3 first = first_finer_child(level, id);
       ivec3 child[8];
-      bool own[8];
       for (int i = 0; i < 8; ++i) {
         ivec3 offset = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
         child[i] = voxel_texel(first + offset, level - 1);
-        own[i] = FACE_FACING != 0 && !finer_level_covers(level - 1, first + offset);
       }
-      for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, filter_children(v, child, own));
+      for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, filter_children(v, child));
     } else {
+      // The voxel's own injected light, sent (given its faces) the ways its surfaces face;
+      // every composite above is built from these.
       vec4 injected = scrub(texelFetch(radiance, texel, 0));
+      bool lit = any(greaterThan(injected.rgb, vec3(0.0)));
+      vec3 coverage = vec3(1.0);
 #if LEVEL_COVERAGE
-      vec3 coverage = level_coverage(texelFetch(voxel_normal, texel, 0), level);
+      coverage = level_coverage(texelFetch(voxel_normal, texel, 0), level);
+#endif
       for (int v = 0; v < VOLUMES; ++v) {
         float a = injected.a * coverage[v / 2];
-        store_dst(v, texel, vec4(injected.rgb * a, a));
-      }
-#else
-      vec4 premultiplied = vec4(injected.rgb * injected.a, injected.a);
-      for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, premultiplied);
+        vec3 rgb = injected.rgb;
+#if FACE_FACING && ANISOTROPIC
+        if (lit) rgb *= directional_light(texel, v);
 #endif
+        store_dst(v, texel, vec4(rgb * a, a));
+      }
     }
     return;
   }
@@ -255,14 +284,9 @@ void main() {
   int level = id.z / rm;
   ivec3 local = ivec3(id.xy, id.z - level * rm);
   ivec3 child[8];
-  bool own[8];
-  ivec3 origin = voxel_clipmap.levels[level].origin_voxel.xyz;
   for (int i = 0; i < 8; ++i) {
     ivec3 c = local * 2 + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
     child[i] = ivec3(c.xy, c.z + level * rs);
-    // Mip 0 texel c holds the world voxel w with w mod r = c, whose window coordinate is
-    // (c - origin) mod r. Only mip 0 holds voxels' own light.
-    own[i] = FACE_FACING != 0 && pc.mip == 1 && !finer_level_covers(level, (c - origin) & (rs - 1));
   }
-  for (int v = 0; v < VOLUMES; ++v) store_dst(v, id, filter_children(v, child, own));
+  for (int v = 0; v < VOLUMES; ++v) store_dst(v, id, filter_children(v, child));
 }

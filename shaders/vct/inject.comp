@@ -51,6 +51,12 @@ layout(set = 0, binding = 6, rgba16f) writeonly uniform image3D out_radiance;
 #if HAS_FACES
 layout(set = 0, binding = 7) uniform usampler3D voxel_faces;
 #endif
+#ifndef HAS_LIGHT_SHARES
+#define HAS_LIGHT_SHARES 0
+#endif
+#if HAS_LIGHT_SHARES
+layout(set = 0, binding = 8, r32ui) writeonly uniform uimage3D out_light_shares;
+#endif
 
 layout(push_constant) uniform Push {
   uint shadow_slots;    // lights with shadow data
@@ -115,6 +121,9 @@ void main() {
   int level = id.z / r;
   ivec3 window = ivec3(id.xy, id.z - level * r);
   ivec3 texel = voxel_texel(window, level);
+#if HAS_LIGHT_SHARES
+  imageStore(out_light_shares, texel, uvec4(0u));
+#endif
   if (!voxel_level_valid(level)) {
     imageStore(out_radiance, texel, vec4(0.0));
     return;
@@ -147,14 +156,34 @@ void main() {
   vec3 irradiance = vec3(0.0);
   int groups = 0;
 #if HAS_FACES
-  vec3 face_normals[VOXEL_FACE_GROUPS];
-  float face_shares[VOXEL_FACE_GROUPS], face_offsets[VOXEL_FACE_GROUPS];
-  groups = voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), face_normals, face_shares,
-                              face_offsets);
-  for (int g = 0; g < groups; ++g) {
-    vec3 p = center + face_normals[g] * (face_offsets[g] * size) + voxel_clipmap.anchor.xyz;
-    irradiance += face_shares[g] * surface_irradiance(p, face_normals[g], true, size);
+  uvec4 faces = texelFetch(voxel_faces, texel, 0);
+  float area = 0.0;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) area += voxel_face_share(faces, g);
+  // Each group's light (luminance x area share), for the light shares.
+  float group_light[VOXEL_FACE_GROUPS];
+  float light = 0.0;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    group_light[g] = 0.0;
+    float share = voxel_face_share(faces, g);
+    if (share <= 0.0) continue;
+    share /= area;
+    vec3 n = voxel_face_normal(faces, g);
+    vec3 p = center + n * (voxel_face_offset(faces, g) * size) + voxel_clipmap.anchor.xyz;
+    vec3 e = surface_irradiance(p, n, true, size);
+    irradiance += share * e;
+    group_light[g] = share * voxel_luminance(reflectance * e + emission);
+    light += group_light[g];
+    ++groups;
   }
+#if HAS_LIGHT_SHARES
+  if (light > 0.0 && !isinf(light)) {
+    uint shares = 0u;
+    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+      shares = voxel_pack_light_share(shares, g, group_light[g] / light);
+    }
+    imageStore(out_light_shares, texel, uvec4(shares));
+  }
+#endif
 #endif
   if (groups == 0) {  // no faces volume, or a voxel written without one
     vec3 p = center + (has_normal ? n * offset : vec3(0.0)) + voxel_clipmap.anchor.xyz;

@@ -510,12 +510,12 @@ void expect_lit_box_matches_radiosity(const VoxelGiSetup& gi, const BoxRadiosity
 }
 
 std::vector<EnergyBoundScene> energy_bound_scenes() {
-  // Cornell box: measured 1.00 to 1.09 for vct (32^3 and 64^3, 4 to 16 cones; 1.06 to 1.16
-  // before cones had lanes); the same edge excess as the lit square's.
-  // Thin wall: measured 1.41 to 1.51 for vct (1.46 to 1.83 before voxels sent each side the share
-  // of their surfaces facing it). Lighting a voxel's faces one by one left it there, so the two
-  // faces of the 1 mm wall, which straddle a voxel face, fall in different voxels; the excess has
-  // another cause, not yet found (docs/error-budget.md, "What is left").
+  // Cornell box: measured 0.92 to 0.95 for vct (32^3 and 64^3, 4 to 16 cones, refine 0 to 3).
+  // Thin wall: measured 1.14 to 1.27 for vct (1.43 with refine 0; 1.41 to 1.51 in the tenth
+  // round, 1.46 to 1.83 before voxels sent each side the share of their surfaces facing it).
+  // The two faces of the 1 mm wall straddle a voxel face and fall in different voxels, so the
+  // light shares leave it where it was; the excess left has another cause, not yet found
+  // (docs/error-budget.md, "What is left").
   // The voxel bounces of dvs on the Cornell box add 0.89 to 1.01 of what the path tracer's next
   // bounce adds (0.49 to 0.80 while they sampled the volumes with anisotropic filtering,
   // docs/error-budget.md, thirteenth round). On the thin wall they add 1.6 to 3.5 times what

@@ -1,6 +1,7 @@
 #pragma once
 // Graph texts of the volume-level tests: uploaded radiance (and, with `with_normals`, voxel
-// normals; with `with_faces`, the voxels' faces) -> vct.filter (isotropic or anisotropic),
+// normals; with `with_faces`, the voxels' faces; with `with_light_shares` too, their light
+// shares) -> vct.filter (isotropic or anisotropic),
 // with the filtered volumes persistent so tests can read them afterwards.
 
 #include <string>
@@ -8,7 +9,8 @@
 namespace voxgi::test {
 
 inline std::string filter_graph(int resolution, int levels, bool anisotropic,
-                                bool with_normals = false, bool with_faces = false) {
+                                bool with_normals = false, bool with_faces = false,
+                                bool with_light_shares = false) {
   const std::string clipmap = "{ \"type\": \"clipmap\", \"format\": \"rgba16f\", \"resolution\": " +
                               std::to_string(resolution) +
                               ", \"levels\": " + std::to_string(levels);
@@ -25,6 +27,14 @@ inline std::string filter_graph(int resolution, int levels, bool anisotropic,
         std::to_string(resolution) + ", \"levels\": " + std::to_string(levels) +
         ", \"persistent\": true },\n";
     extra_slots += ", \"faces\": \"vct.faces\"";
+  }
+  if (with_faces && with_light_shares) {
+    resources +=
+        "\"vct.light_shares\": { \"type\": \"clipmap\", \"format\": \"r32ui\", "
+        "\"resolution\": " +
+        std::to_string(resolution) + ", \"levels\": " + std::to_string(levels) +
+        ", \"persistent\": true },\n";
+    extra_slots += ", \"light_shares\": \"vct.light_shares\"";
   }
   std::string outputs;
   if (anisotropic) {

@@ -1,7 +1,7 @@
 // vct.filter against a CPU reference on a random 16^3 clipmap with two levels (so the level
-// consistency rule is exercised too), in both modes and anisotropic with random faces,
-// every mip of every volume. Random values include NaN, Inf and out-of-range opacity, which
-// the filter must scrub to zero.
+// consistency rule is exercised too), in both modes and anisotropic with random faces (and
+// random light shares), every mip of every volume. Random values include NaN, Inf and out-of-range
+// opacity, which the filter must scrub to zero.
 
 #include <gtest/gtest.h>
 
@@ -63,20 +63,43 @@ glm::vec4 decode_filtered(glm::vec4 stored) {
 // volumes[v][mip]: texels of the whole stacked image at that mip.
 using Reference = std::vector<std::vector<std::vector<glm::vec4>>>;
 
-// The share of a voxel's light that volume v's composites receive (shaders/vct/filter.comp,
-// volume_facing): all of it less the area share of the surfaces facing away from a cone
-// travelling along v. With axis-aligned groups (faces_texel), that is group v's share.
-float volume_facing(const glm::vec4& faces_bits, int volume) {
-  const uint32_t shares = glm::floatBitsToUint(faces_bits.w);
-  float total = 0.0f;
-  for (int g = 0; g < 6; ++g) total += float((shares >> (5 * g)) & 31u);
-  if (total == 0.0f) return 1.0f;
-  return 1.0f - float((shares >> (5 * volume)) & 31u) / total;
+// How bright a voxel holding its own light looks to cones travelling along volume v, relative
+// to its mean radiance (shaders/vct/filter.comp, directional_light), for axis-aligned groups
+// (faces_texel): group v ^ 1 faces the cone, group v faces away, the others are seen edge-on;
+// the footprint is max(towards, away) + edge, and what shows is the light of the groups facing
+// the cone or seen edge-on. `lit`: the light shares' bits (0: the area shares stand in).
+float directional_light(const glm::vec4& faces_bits, uint32_t lit, int volume) {
+  const uint32_t area_bits = glm::floatBitsToUint(faces_bits.w);
+  float area = 0.0f, light = 0.0f;
+  for (int g = 0; g < 6; ++g) {
+    area += float((area_bits >> (5 * g)) & 31u);
+    light += float((lit >> (5 * g)) & 31u);
+  }
+  if (area == 0.0f) return 1.0f;
+  float towards = 0.0f, away = 0.0f, edge = 0.0f, shown = 0.0f;
+  for (int g = 0; g < 6; ++g) {
+    const float s = float((area_bits >> (5 * g)) & 31u) / area;
+    if (s <= 0.0f) continue;
+    const float l = light > 0.0f ? float((lit >> (5 * g)) & 31u) / light : s;
+    if (g / 2 != volume / 2) {
+      edge += s;
+      shown += l;
+    } else if (g != volume) {  // the group's normal points against the cone's travel
+      towards += s;
+      shown += l;
+    } else {
+      away += s;
+    }
+  }
+  const float footprint = std::max(towards, away) + edge;
+  return footprint > 1e-6f ? shown / footprint : 0.0f;
 }
 
-// `faces`: the voxels' faces (nullptr: the filter has none).
+// `faces`: the voxels' faces (nullptr: the filter has none); `light_shares`: their light
+// shares (nullptr: none).
 Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, bool anisotropic,
-                           const CpuClipmap* faces = nullptr) {
+                           const CpuClipmap* faces = nullptr,
+                           const CpuClipmap* light_shares = nullptr) {
   const int volumes = anisotropic ? 6 : 1;
   int mips = 0;
   while ((kR >> mips) > 0) ++mips;
@@ -88,15 +111,6 @@ Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, 
     }
   }
   auto idx = [](glm::ivec3 t, int rm) { return (size_t(t.z) * rm + t.y) * rm + t.x; };
-  // Mip 0 texels that hold their own injected light (not the filter of finer voxels), and a
-  // child's value as a composite of volume v receives it.
-  std::vector<bool> own(size_t(kR) * kR * kR * kLevels, true);
-  auto child_value = [&](int v, glm::ivec3 texel, glm::vec4 value) {
-    if (faces && own[idx(texel, kR)] && value.a > 0.0f) {
-      value = glm::vec4(glm::vec3(value) * volume_facing(faces->at(texel), v), value.a);
-    }
-    return value;
-  };
   for (int level = 0; level < kLevels; ++level) {
     for (int z = 0; z < kR; ++z) {
       for (int y = 0; y < kR; ++y) {
@@ -118,16 +132,21 @@ Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, 
               for (int i = 0; i < 8; ++i) {
                 const glm::ivec3 o(i & 1, (i >> 1) & 1, (i >> 2) & 1);
                 const glm::ivec3 t = clipmap_texel(info, first + o, level - 1);
-                c[i] = child_value(v, t, ref[v][0][idx(t, kR)]);
+                c[i] = ref[v][0][idx(t, kR)];
               }
               value = filter_children(c, v, anisotropic);
             } else {
               const glm::vec4 r = scrub(radiance.at(texel));
-              value = glm::vec4(glm::vec3(r) * r.a, r.a);
+              glm::vec3 rgb(r);
+              if (faces && anisotropic && glm::any(glm::greaterThan(rgb, glm::vec3(0.0f)))) {
+                const uint32_t lit =
+                    light_shares ? glm::floatBitsToUint(light_shares->at(texel).x) : 0u;
+                rgb *= directional_light(faces->at(texel), lit, v);
+              }
+              value = glm::vec4(rgb * r.a, r.a);
             }
             ref[v][0][idx(texel, kR)] = scrub(value);
           }
-          own[idx(texel, kR)] = !from_finer;
         }
       }
     }
@@ -145,7 +164,7 @@ Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, 
             for (int i = 0; i < 8; ++i) {
               glm::ivec3 t = local * 2 + glm::ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
               t.z += level * rs;
-              c[i] = m == 1 ? child_value(v, t, ref[v][0][idx(t, rs)]) : ref[v][m - 1][idx(t, rs)];
+              c[i] = ref[v][m - 1][idx(t, rs)];
             }
             ref[v][m][idx({x, y, z}, rm)] = scrub(filter_children(c, v, anisotropic));
           }
@@ -156,13 +175,14 @@ Reference reference_filter(const ClipmapInfo& info, const CpuClipmap& radiance, 
   return ref;
 }
 
-enum class FilterMode { Isotropic, Anisotropic, AnisotropicWithFaces };
+enum class FilterMode { Isotropic, Anisotropic, AnisotropicWithFaces, AnisotropicWithLightShares };
 
 class FilterReferenceTest : public GpuTest, public ::testing::WithParamInterface<FilterMode> {};
 
 TEST_P(FilterReferenceTest, MatchesCpuReferenceOnEveryMip) {
   const bool anisotropic = GetParam() != FilterMode::Isotropic;
-  const bool with_faces = GetParam() == FilterMode::AnisotropicWithFaces;
+  const bool with_shares = GetParam() == FilterMode::AnisotropicWithLightShares;
+  const bool with_faces = GetParam() == FilterMode::AnisotropicWithFaces || with_shares;
   VolumeData data;
   // Windows offset from the origin so that the toroidal wrap is not the identity.
   data.info = make_clipmap_info(kR, kLevels, 0.25f, glm::vec3(1.3f, -0.7f, 2.9f));
@@ -197,12 +217,27 @@ TEST_P(FilterReferenceTest, MatchesCpuReferenceOnEveryMip) {
     if (unit(rng) < 0.33f) groups.clear();
     t = faces_texel(groups);
   }
+  // Random light shares over each voxel's groups (a tenth none: the area shares stand in).
+  CpuClipmap shares(kR, kLevels);
+  for (size_t i = 0; i < shares.texels.size(); ++i) {
+    const uint32_t area_bits = glm::floatBitsToUint(faces.texels[i].w);
+    uint32_t bits = 0u;
+    for (int g = 0; g < 6; ++g) {
+      if (((area_bits >> (5 * g)) & 31u) != 0u && unit(rng) < 0.7f) {
+        bits |= uint32_t(unit(rng) * 31.99f) << (5 * g);
+      }
+    }
+    if (unit(rng) < 0.1f) bits = 0u;
+    shares.texels[i] = glm::vec4(glm::uintBitsToFloat(bits), 0.0f, 0.0f, 0.0f);
+  }
   if (with_faces) data.volumes["faces"] = faces;
-  VolumeGraph graph(filter_graph(kR, kLevels, anisotropic, false, with_faces), &data,
+  if (with_shares) data.volumes["light_shares"] = shares;
+  VolumeGraph graph(filter_graph(kR, kLevels, anisotropic, false, with_faces, with_shares), &data,
                     scene::make_builtin_scene("empty"));
   graph.render();
   const Reference ref =
-      reference_filter(data.info, radiance, anisotropic, with_faces ? &faces : nullptr);
+      reference_filter(data.info, radiance, anisotropic, with_faces ? &faces : nullptr,
+                       with_shares ? &shares : nullptr);
   const std::vector<std::string> names = filtered_resources(anisotropic);
   for (size_t v = 0; v < names.size(); ++v) {
     for (size_t m = 0; m < ref[v].size(); ++m) {
@@ -231,13 +266,16 @@ TEST_P(FilterReferenceTest, MatchesCpuReferenceOnEveryMip) {
 
 INSTANTIATE_TEST_SUITE_P(Modes, FilterReferenceTest,
                          ::testing::Values(FilterMode::Isotropic, FilterMode::Anisotropic,
-                                           FilterMode::AnisotropicWithFaces),
+                                           FilterMode::AnisotropicWithFaces,
+                                           FilterMode::AnisotropicWithLightShares),
                          [](const auto& mode) {
                            switch (mode.param) {
                              case FilterMode::Isotropic:
                                return "isotropic";
                              case FilterMode::Anisotropic:
                                return "anisotropic";
+                             case FilterMode::AnisotropicWithLightShares:
+                               return "anisotropic_with_light_shares";
                              default:
                                return "anisotropic_with_faces";
                            }
@@ -328,6 +366,40 @@ TEST_F(FilterBehaviourTest, CoarseLevelFloorAgreesWithItsFilteredTwin) {
       }
       EXPECT_GT(at(texels, thin_wall).a, 0.999f) << volumes[v] << ": the cancelled normal";
     }
+  }
+}
+
+// A voxel that holds both faces of a thin wall, lit on one of them: its mean radiance averages
+// the lit face with the dark one, so the filter must send the lit face's light (twice the
+// mean) towards the lit side and none through the wall. Before the light shares it sent a
+// quarter of the lit face's light each way (the mean, halved by the facing), darkening the
+// lit side and leaking to the dark one (docs/error-budget.md, nineteenth round).
+TEST_F(FilterBehaviourTest, ThinWallSendsItsLitFaceLightOnlyItsWay) {
+  VolumeData data;
+  data.info = make_clipmap_info(kR, 1, 0.25f, glm::vec3(0.0f));
+  CpuClipmap radiance(kR, 1), faces(kR, 1), shares(kR, 1);
+  const glm::ivec3 wall = clipmap_texel(data.info, {5, 6, 7}, 0);
+  const float mean = 0.5f;  // the lit face's radiance 1, the dark face's 0, nearly half each
+  radiance.at(wall) = glm::vec4(mean, mean, mean, 1.0f);
+  faces.at(wall) = faces_texel({{0, 15}, {1, 16}});  // +X (dark) 15/31, -X (lit) 16/31
+  shares.at(wall) = glm::vec4(glm::uintBitsToFloat(31u << 5), 0.0f, 0.0f, 0.0f);  // all -X
+  data.volumes["radiance"] = radiance;
+  data.volumes["faces"] = faces;
+  data.volumes["light_shares"] = shares;
+  VolumeGraph graph(filter_graph(kR, 1, true, false, true, true), &data,
+                    scene::make_builtin_scene("empty"));
+  graph.render();
+  // Seen from -x (cones travelling +x) the lit face fills the voxel's footprint; from +x the
+  // dark face does; seen edge-on (y, z) the voxel shows its mean.
+  const float lit = mean * 31.0f / 16.0f;
+  const float expected[6] = {lit, 0.0f, mean, mean, mean, mean};
+  const std::vector<std::string> volumes = filtered_resources(true);
+  for (size_t v = 0; v < volumes.size(); ++v) {
+    const glm::vec4 texel =
+        decode_filtered(graph.download(volumes[v])[(size_t(wall.z) * kR + wall.y) * kR + wall.x]);
+    std::printf("[thin wall] %s: %.4f (expected %.4f)\n", volumes[v].c_str(), texel.r, expected[v]);
+    EXPECT_NEAR(texel.r, expected[v], 2e-3f) << volumes[v];
+    EXPECT_GT(texel.a, 0.999f) << volumes[v];
   }
 }
 

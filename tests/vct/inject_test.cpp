@@ -131,6 +131,30 @@ TEST_F(InjectTest, MatchesTheLambertFormulaAndSkipsStaticFrames) {
   EXPECT_EQ(graph.skipped("inject"), "");
 }
 
+// Light shares are per face group: asking for them without the faces is an error that names
+// the slot, not a volume of zeros.
+TEST_F(InjectTest, LightSharesWithoutFacesNamesTheField) {
+  std::string graph = inject_graph();
+  const std::string out = "\"out\": { \"radiance\": \"vct.radiance\" }";
+  const std::string resources = "\"resources\": {\n";
+  ASSERT_NE(graph.find(out), std::string::npos);
+  graph.replace(graph.find(out), out.size(),
+                "\"out\": { \"radiance\": \"vct.radiance\", \"light_shares\": \"vct.shares\" }");
+  graph.insert(graph.find(resources) + resources.size(),
+               "\"vct.shares\": { \"type\": \"clipmap\", \"resolution\": 16, \"levels\": 1, "
+               "\"format\": \"r32ui\", \"persistent\": true },\n");
+  VolumeData data;
+  data.info = make_clipmap_info(kR, 1, kVoxel, glm::vec3(0.0f));
+  try {
+    VolumeGraph compiled(graph, &data, point_light_scene(glm::vec3(0.0f), 1.0f));
+    FAIL() << "expected an error";
+  } catch (const std::exception& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("light_shares"), std::string::npos) << message;
+    EXPECT_NE(message.find("faces"), std::string::npos) << message;
+  }
+}
+
 std::string faces_inject_graph() {
   const std::string clipmap =
       "{ \"type\": \"clipmap\", \"resolution\": 16, \"levels\": 1, \"persistent\": true, "
@@ -143,6 +167,7 @@ std::string faces_inject_graph() {
              "\" },\n";
   }
   graph += "\"vct.radiance\": " + clipmap + "\"rgba16f\" },\n";
+  graph += "\"vct.light_shares\": " + clipmap + "\"r32ui\" },\n";
   graph +=
       "\"voxel.clipmap_info\": { \"type\": \"buffer\", \"size\": 288, \"persistent\": true } },\n"
       "\"passes\": [\n"
@@ -151,7 +176,8 @@ std::string faces_inject_graph() {
       "\"faces\": \"voxel.faces\" } },\n"
       " { \"name\": \"inject\", \"type\": \"vct.inject\", \"in\": { \"clipmap_info\": "
       "\"voxel.clipmap_info\", \"albedo\": \"voxel.albedo\", \"normal\": \"voxel.normal\", "
-      "\"faces\": \"voxel.faces\" }, \"out\": { \"radiance\": \"vct.radiance\" } } ],\n"
+      "\"faces\": \"voxel.faces\" }, \"out\": { \"radiance\": \"vct.radiance\", "
+      "\"light_shares\": \"vct.light_shares\" } } ],\n"
       "\"outputs\": { \"radiance\": \"vct.radiance\" } }\n";
   return graph;
 }
@@ -159,7 +185,9 @@ std::string faces_inject_graph() {
 // With the faces volume, each way a voxel's surfaces face is lit on its own (its normal, its
 // cosine), weighted by its area share: a floor meeting a wall under a light above them, the two
 // faces of a thin slab (the face turned away is dark; without faces the slab, whose normals
-// cancel, was lit whole as if it faced the light), against the formula.
+// cancel, was lit whole as if it faced the light), against the formula. The light shares say
+// which group sends how much of it: all of the slab's from its lit face, so that vct.filter
+// sends it that way only.
 TEST_F(InjectTest, LightsEachFacingOfAVoxelOnItsOwn) {
   const glm::vec3 light_position(0.3f, 0.6f, 0.0f);
   const float intensity = 3.0f;
@@ -193,6 +221,7 @@ TEST_F(InjectTest, LightsEachFacingOfAVoxelOnItsOwn) {
   VolumeGraph graph(faces_inject_graph(), &data, scene);
   graph.render();
   const std::vector<glm::vec4> radiance = graph.download("vct.radiance");
+  const std::vector<glm::vec4> light_shares = graph.download("vct.light_shares");
 
   const float a = std::round(0.6f * 255.0f) / 255.0f;
   for (const Voxel& v : voxels) {
@@ -203,15 +232,24 @@ TEST_F(InjectTest, LightsEachFacingOfAVoxelOnItsOwn) {
     const glm::vec3 l = to_light / std::sqrt(d2);
     // Per group: L_g = a / pi I / d^2 max(n_g . l, 0); the voxel holds their share-weighted mean.
     float shares = 0.0f, mean = 0.0f;
+    float group_light[6] = {};
     for (const auto& [g, steps] : v.groups) {
       const float s = float(steps) / 31.0f;
-      mean += s * a / float(M_PI) * intensity / d2 * std::max(glm::dot(axes[g], l), 0.0f);
+      group_light[g] = s * a / float(M_PI) * intensity / d2 * std::max(glm::dot(axes[g], l), 0.0f);
+      mean += group_light[g];
       shares += s;
     }
+    const float light = mean;
     mean /= shares;
     const size_t index = albedo.index(clipmap_texel(data.info, v.window, 0));
     std::printf("%s: radiance %.5f, expected %.5f\n", v.what, radiance[index].r, mean);
     EXPECT_NEAR(radiance[index].r, mean, 2e-3f + 2e-3f * mean) << v.what;
+    const uint32_t bits = glm::floatBitsToUint(light_shares[index].x);
+    for (int g = 0; g < 6; ++g) {
+      const float share = float((bits >> (5 * g)) & 31u) / 31.0f;
+      // 5 bits: within half a step of the exact share.
+      EXPECT_NEAR(share, group_light[g] / light, 0.5f / 31.0f + 1e-4f) << v.what << ", group " << g;
+    }
   }
 }
 

@@ -68,7 +68,7 @@ class VolumePass final : public graph::Pass {
     VkCommandBuffer cmd = ctx.cmd();
     vkCmdUpdateBuffer(cmd, ctx.resource("clipmap_info").buffer->handle(), 0, sizeof(ClipmapInfo),
                       &data_->info);
-    for (const char* slot : {"albedo", "normal", "emission", "faces", "radiance"}) {
+    for (const char* slot : {"albedo", "normal", "emission", "faces", "light_shares", "radiance"}) {
       if (!ctx.has(slot)) continue;
       auto it = data_->volumes.find(slot);
       if (it == data_->volumes.end()) {
@@ -112,6 +112,10 @@ class VolumePass final : public graph::Pass {
         const size_t at = bytes.size();
         bytes.resize(at + 16);
         std::memcpy(bytes.data() + at, &v, 16);
+      } else if (format == VK_FORMAT_R32_UINT) {
+        const size_t at = bytes.size();
+        bytes.resize(at + 4);
+        std::memcpy(bytes.data() + at, &v.x, 4);
       } else {
         throw std::invalid_argument("vcttest.volumes: unsupported format");
       }
@@ -140,6 +144,7 @@ void register_volume_pass(graph::Registry& registry, const VolumeData* data) {
                   transfer_output("normal", clipmap, true),
                   transfer_output("emission", clipmap, true),
                   transfer_output("faces", clipmap, true),
+                  transfer_output("light_shares", clipmap, true),
                   transfer_output("radiance", clipmap, true)};
   info.may_skip = true;
   registry.add(std::move(info), [data] { return std::make_unique<VolumePass>(data); });
@@ -221,6 +226,13 @@ std::vector<glm::vec4> VolumeGraph::download(const std::string& resource, uint32
   } else if (format == VK_FORMAT_R8G8B8A8_UNORM || format == VK_FORMAT_R8G8B8A8_SRGB) {
     for (size_t i = 0; i + 4 <= bytes.size(); i += 4) {
       texels.push_back(glm::vec4(bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]) / 255.0f);
+    }
+  } else if (format == VK_FORMAT_R32_UINT) {
+    // Integer texels travel as the floats' bits (see CpuClipmap), in x.
+    for (size_t i = 0; i + 4 <= bytes.size(); i += 4) {
+      float bits;
+      std::memcpy(&bits, bytes.data() + i, 4);
+      texels.push_back(glm::vec4(bits, 0.0f, 0.0f, 0.0f));
     }
   } else {
     throw std::invalid_argument("download: unsupported format of " + resource);

@@ -64,7 +64,7 @@ glm::vec4 faces_texel(const std::vector<std::pair<int, uint32_t>>& groups);
 struct VolumeData {
   ClipmapInfo info{};
   std::map<std::string, CpuClipmap> volumes;  // by output slot: albedo, normal, emission, faces,
-                                              // radiance
+                                              // light_shares, radiance
   uint64_t version = 1;
 };
 

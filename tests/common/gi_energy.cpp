@@ -486,6 +486,75 @@ void expect_unlit_underside_sends_nothing(const VoxelGiSetup& gi, SquareLight li
   }
 }
 
+namespace {
+
+// Sums of the luminance of the image's lit and dark halves, the lit one being where `linear`
+// (direct light included) is larger; an eighth of the width on each side of the middle is
+// left out.
+struct Halves {
+  double lit = 0.0;
+  double dark = 0.0;
+};
+Halves image_halves(const RenderedImage& image, const RenderedImage& linear) {
+  const uint32_t w = image.width;
+  double left = 0.0, right = 0.0, left_direct = 0.0, right_direct = 0.0;
+  for (uint32_t y = 0; y < image.height; ++y) {
+    for (uint32_t c = 0; c < w / 2 - w / 8; ++c) {
+      const size_t row = static_cast<size_t>(y) * w;
+      left += image::luminance(&image.rgba[(row + c) * 4]);
+      right += image::luminance(&image.rgba[(row + w - 1 - c) * 4]);
+      left_direct += image::luminance(&linear.rgba[(row + c) * 4]);
+      right_direct += image::luminance(&linear.rgba[(row + w - 1 - c) * 4]);
+    }
+  }
+  return left_direct > right_direct ? Halves{left, right} : Halves{right, left};
+}
+
+}  // namespace
+
+void expect_thin_wall_in_one_voxel_sends_nothing_through(const VoxelGiSetup& gi) {
+  const double fraction = kThinWallLeak;
+  // The floor spans 2 m, so one dense level's voxel is 2 / (R - 4) (moved_on_the_voxel_grid)
+  // and x = 0 lies on a voxel face: the wall's faces straddle the middle of the voxel
+  // [0, voxel).
+  const float voxel = 2.0f / (static_cast<float>(gi.voxel_resolution) - 4.0f);
+  const float x = 0.5f * voxel;
+  scene::SceneBuilder b("thin_wall_in_one_voxel");
+  const int white = b.add_material(matte(glm::vec3(0.8f)));
+  b.add_quad("floor", {-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white);
+  b.add_quad("wall_minus_x", {x - 0.0005f, 0, -1}, {0, 0, 2}, {0, 1, 0}, white);
+  b.add_quad("wall_plus_x", {x + 0.0005f, 0, -1}, {0, 1, 0}, {0, 0, 2}, white);
+  b.add_light(point_light(5.0f), {-0.5f, 0.6f, 0});
+  b.add_camera("top", {0, 3, 0.01f}, {0, 0, 0}, 0.8f);
+  const scene::Scene scene = b.finish();
+  const uint32_t size = 32;
+  RenderHarness harness(voxel_gi_render_setup(gi, scene, size));
+  harness.render();
+  const RenderedImage indirect = harness.output("indirect");
+  expect_finite_non_negative(indirect, gi.label + " indirect");
+  const Halves rendered = image_halves(indirect, harness.output("linear"));
+
+  RenderSetup setup;
+  setup.graph = "graphs/reference.json";
+  setup.scene_data = scene;
+  setup.width = size;
+  setup.height = size;
+  setup.overrides = {{"path_tracer.lambert", "true"},
+                     {"path_tracer.max_depth", std::to_string(gi.indirect_bounces + 1)},
+                     {"path_tracer.pixel_jitter", "false"},
+                     {"path_tracer.samples_per_frame", "32"}};
+  RenderHarness reference(setup);
+  reference.render(2);
+  const Halves traced = image_halves(reference.output("indirect"), reference.output("linear"));
+  std::printf(
+      "[thin wall in one voxel] %s: lit half %.3f (path traced %.3f, ratio %.4f), dark half "
+      "%.3f (path traced %.3f), dark / lit %.4f\n",
+      gi.label.c_str(), rendered.lit, traced.lit, rendered.lit / traced.lit, rendered.dark,
+      traced.dark, rendered.dark / rendered.lit);
+  EXPECT_NEAR(rendered.lit / traced.lit, 1.0, kThinWallLitTolerance) << gi.label;
+  EXPECT_LT(rendered.dark, fraction * rendered.lit) << gi.label;
+}
+
 void expect_lit_square_matches_closed_form(const VoxelGiSetup& gi, SquareLight light,
                                            double tolerance, double units_per_metre) {
   ASSERT_EQ(gi.indirect_bounces, 1) << "the closed form is for one bounce";

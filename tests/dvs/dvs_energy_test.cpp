@@ -34,6 +34,12 @@ TEST_P(DvsAnalyticTest, ReceiverUnderASquareGetsNoLightThroughIt) {
   expect_unlit_underside_sends_nothing(dvs_gi_setup(GetParam(), 0), SquareLight::Directional);
 }
 
+// Both faces of a thin wall in one voxel, lit on one side, through two voxel bounces: the
+// light shares carry each face's light its own way through the bounces too.
+TEST_P(DvsAnalyticTest, ThinWallInOneVoxelSendsNothingThrough) {
+  expect_thin_wall_in_one_voxel_sends_nothing_through(dvs_gi_setup(GetParam(), 2));
+}
+
 // Measured at 32^3: 1.000 / 0.983 / 0.964 of the radiosity solution for 0 / 1 / 2 voxel bounces,
 // at 64^3 0.997 / 0.979 / 0.959. (Until the voxel bounces sampled the volumes with the
 // contract's sampler the two-bounce case was 0.893 at 32^3: anisotropic filtering on lavapipe

@@ -35,6 +35,12 @@ TEST_P(VctAnalyticTest, ReceiverUnderASquareGetsNoLightThroughIt) {
   expect_unlit_underside_sends_nothing(vct_gi_setup(GetParam()), SquareLight::Directional);
 }
 
+// Both faces of a thin wall in one voxel, lit on one side: the voxel sends its lit face's
+// light to the lit side only (docs/error-budget.md, nineteenth round).
+TEST_P(VctAnalyticTest, ThinWallInOneVoxelSendsNothingThrough) {
+  expect_thin_wall_in_one_voxel_sends_nothing_through(vct_gi_setup(GetParam()));
+}
+
 TEST_P(VctAnalyticTest, ClosedBoxUnderAPointLight) {
   expect_lit_box_matches_radiosity(vct_gi_setup(GetParam()), BoxRadiosity(12, 1));
 }

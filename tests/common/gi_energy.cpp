@@ -404,9 +404,12 @@ double render_mean_indirect(const VoxelGiSetup& gi, const scene::Scene& scene, u
   return mean_luminance(indirect);
 }
 
-PathTracedMean path_traced_mean_indirect(const scene::Scene& scene, uint32_t size,
-                                         int indirect_bounces, int samples_per_pixel) {
-  const int per_frame = std::min(samples_per_pixel, 32);
+namespace {
+
+// graphs/reference.json as the comparisons need it: Lambertian, `indirect_bounces` + 1 deep,
+// pixel centres, `per_frame` samples per pixel and frame.
+RenderSetup path_traced_setup(const scene::Scene& scene, uint32_t size, int indirect_bounces,
+                              int per_frame) {
   RenderSetup setup;
   setup.graph = "graphs/reference.json";
   setup.scene_data = scene;
@@ -416,7 +419,15 @@ PathTracedMean path_traced_mean_indirect(const scene::Scene& scene, uint32_t siz
                      {"path_tracer.max_depth", std::to_string(indirect_bounces + 1)},
                      {"path_tracer.pixel_jitter", "false"},
                      {"path_tracer.samples_per_frame", std::to_string(per_frame)}};
-  RenderHarness harness(setup);
+  return setup;
+}
+
+}  // namespace
+
+PathTracedMean path_traced_mean_indirect(const scene::Scene& scene, uint32_t size,
+                                         int indirect_bounces, int samples_per_pixel) {
+  const int per_frame = std::min(samples_per_pixel, 32);
+  RenderHarness harness(path_traced_setup(scene, size, indirect_bounces, per_frame));
   harness.render((samples_per_pixel + per_frame - 1) / per_frame);
   const RenderedImage indirect = harness.output("indirect");
   expect_finite_non_negative(indirect, "path-traced indirect");
@@ -534,16 +545,7 @@ void expect_thin_wall_in_one_voxel_sends_nothing_through(const VoxelGiSetup& gi)
   expect_finite_non_negative(indirect, gi.label + " indirect");
   const Halves rendered = image_halves(indirect, harness.output("linear"));
 
-  RenderSetup setup;
-  setup.graph = "graphs/reference.json";
-  setup.scene_data = scene;
-  setup.width = size;
-  setup.height = size;
-  setup.overrides = {{"path_tracer.lambert", "true"},
-                     {"path_tracer.max_depth", std::to_string(gi.indirect_bounces + 1)},
-                     {"path_tracer.pixel_jitter", "false"},
-                     {"path_tracer.samples_per_frame", "32"}};
-  RenderHarness reference(setup);
+  RenderHarness reference(path_traced_setup(scene, size, gi.indirect_bounces, 32));
   reference.render(2);
   const Halves traced = image_halves(reference.output("indirect"), reference.output("linear"));
   std::printf(

@@ -292,8 +292,9 @@ void expect_lit_square_matches_closed_form(const VoxelGiSetup& gi, SquareLight l
 // vct_facing): 5%. Further down they read composites, into which vct.filter lets each voxel's
 // light only where its surfaces face; what is left comes through the sideways volumes of the
 // six-axis model, which keep a surface seen edge-on (a cone rising at 60 degrees reads a
-// quarter of its sample from them): measured 0.10 (32^3) and 0.07 (64^3) at 0.25 m, 0.05 and
-// 0.04 at 0.5 m, where the mips used to send the lit top's light through whole (1.05 to 1.14).
+// quarter of its sample from them): measured 0.070 (32^3) and 0.048 (64^3) at 0.5 m, and
+// 0.001 to 0.005 at 2 and 3 cm, with the light shares (docs/error-budget.md, nineteenth round),
+// where the mips used to send the lit top's light through whole (1.05 to 1.14).
 struct UndersideCase {
   double height;    // metres under the square
   double fraction;  // of the lit side's closed form

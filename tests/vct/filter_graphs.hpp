@@ -20,22 +20,15 @@ inline std::string filter_graph(int resolution, int levels, bool anisotropic,
       clipmap + ", \"persistent\": true },\n";
   if (with_normals) resources += "\"vct.normal\": " + clipmap + ", \"persistent\": true },\n";
   std::string extra_slots = with_normals ? ", \"normal\": \"vct.normal\"" : "";
-  if (with_faces) {
-    resources +=
-        "\"vct.faces\": { \"type\": \"clipmap\", \"format\": \"rgba32ui\", "
-        "\"resolution\": " +
-        std::to_string(resolution) + ", \"levels\": " + std::to_string(levels) +
-        ", \"persistent\": true },\n";
-    extra_slots += ", \"faces\": \"vct.faces\"";
-  }
-  if (with_faces && with_light_shares) {
-    resources +=
-        "\"vct.light_shares\": { \"type\": \"clipmap\", \"format\": \"r32ui\", "
-        "\"resolution\": " +
-        std::to_string(resolution) + ", \"levels\": " + std::to_string(levels) +
-        ", \"persistent\": true },\n";
-    extra_slots += ", \"light_shares\": \"vct.light_shares\"";
-  }
+  // An uploaded integer clipmap vct.<slot>, bound to the filter's slot of that name.
+  auto integer_input = [&](const std::string& slot, const std::string& format) {
+    resources += "\"vct." + slot + "\": { \"type\": \"clipmap\", \"format\": \"" + format +
+                 "\", \"resolution\": " + std::to_string(resolution) +
+                 ", \"levels\": " + std::to_string(levels) + ", \"persistent\": true },\n";
+    extra_slots += ", \"" + slot + "\": \"vct." + slot + "\"";
+  };
+  if (with_faces) integer_input("faces", "rgba32ui");
+  if (with_faces && with_light_shares) integer_input("light_shares", "r32ui");
   std::string outputs;
   if (anisotropic) {
     const char* slots[] = {"pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"};

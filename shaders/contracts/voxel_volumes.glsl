@@ -152,6 +152,18 @@ uint voxel_pack_light_share(uint shares, int g, float share) {
 float voxel_light_share(uint shares, int g) {
   return float((shares >> (5 * g)) & 31u) / VOXEL_LIGHT_SHARE_STEPS;
 }
+// The light shares of a voxel whose groups send `group_light` (luminance x area share, 0 for
+// a group it does not hold): 0 where it sends none.
+uint voxel_pack_light_shares(float group_light[VOXEL_FACE_GROUPS]) {
+  float light = 0.0;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) light += group_light[g];
+  uint shares = 0u;
+  if (!(light > 0.0) || isinf(light)) return shares;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    shares = voxel_pack_light_share(shares, g, group_light[g] / light);
+  }
+  return shares;
+}
 
 float voxel_encode_plane_offset(float d) {
   return 1.0 + VOXEL_PLANE_OFFSET_SCALE * clamp(d, -1.0, 1.0);

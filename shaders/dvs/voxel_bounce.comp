@@ -101,15 +101,12 @@ void main() {
     area += voxel_face_share(faces, g);
     lit_total += voxel_light_share(lit, g);
   }
-  uint shares = 0u;
-  float light = direct_light + bounce_light;
-  if (area > 0.0 && light > 0.0 && !isinf(light)) {
-    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-      float s = voxel_face_share(faces, g) / area;
-      float d = lit_total > 0.0 ? voxel_light_share(lit, g) / lit_total : s;
-      shares = voxel_pack_light_share(shares, g, (d * direct_light + s * bounce_light) / light);
-    }
+  float group_light[VOXEL_FACE_GROUPS];
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    float s = area > 0.0 ? voxel_face_share(faces, g) / area : 0.0;
+    float d = lit_total > 0.0 ? voxel_light_share(lit, g) / lit_total : s;
+    group_light[g] = d * direct_light + s * bounce_light;
   }
-  imageStore(out_light_shares, texel, uvec4(shares));
+  imageStore(out_light_shares, texel, uvec4(voxel_pack_light_shares(group_light)));
 #endif
 }

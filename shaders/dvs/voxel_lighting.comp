@@ -176,7 +176,6 @@ void main() {
     float area = 0.0;
     for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) area += voxel_face_share(faces, g);
     float group_light[VOXEL_FACE_GROUPS];
-    float light = 0.0;
     for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
       group_light[g] = 0.0;
       float share = voxel_face_share(faces, g);
@@ -186,15 +185,11 @@ void main() {
       vec3 p = center + n * (voxel_face_offset(faces, g) * size);
       vec3 e = surface_irradiance(p, n, size);
       irradiance += share * e;
-      group_light[g] = share * voxel_luminance(albedo.rgb * (1.0 / 3.14159265358979) * e + emission);
-      light += group_light[g];
+      group_light[g] =
+          share * voxel_luminance(albedo.rgb * (1.0 / 3.14159265358979) * e + emission);
       ++groups;
     }
-    if (light > 0.0 && !isinf(light)) {
-      for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-        light_shares = voxel_pack_light_share(light_shares, g, group_light[g] / light);
-      }
-    }
+    light_shares = voxel_pack_light_shares(group_light);
 #endif
     if (groups == 0) {  // no faces volume, or a voxel written without one
       vec3 n = safe_normalize(normal.xyz, vec3(0.0));

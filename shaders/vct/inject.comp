@@ -161,7 +161,6 @@ void main() {
   for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) area += voxel_face_share(faces, g);
   // Each group's light (luminance x area share), for the light shares.
   float group_light[VOXEL_FACE_GROUPS];
-  float light = 0.0;
   for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
     group_light[g] = 0.0;
     float share = voxel_face_share(faces, g);
@@ -172,17 +171,10 @@ void main() {
     vec3 e = surface_irradiance(p, n, true, size);
     irradiance += share * e;
     group_light[g] = share * voxel_luminance(reflectance * e + emission);
-    light += group_light[g];
     ++groups;
   }
 #if HAS_LIGHT_SHARES
-  if (light > 0.0 && !isinf(light)) {
-    uint shares = 0u;
-    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-      shares = voxel_pack_light_share(shares, g, group_light[g] / light);
-    }
-    imageStore(out_light_shares, texel, uvec4(shares));
-  }
+  imageStore(out_light_shares, texel, uvec4(voxel_pack_light_shares(group_light)));
 #endif
 #endif
   if (groups == 0) {  // no faces volume, or a voxel written without one

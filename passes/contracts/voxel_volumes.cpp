@@ -23,4 +23,10 @@ graph::SlotSpec voxel_light_shares_output() {
           "vct.filter; needs faces"};
 }
 
+void check_light_shares_have_faces(graph::PassCheck& check) {
+  if (check.has("light_shares") && !check.has("faces")) {
+    check.slot_error("light_shares", "needs the faces input bound (shares are per face group)");
+  }
+}
+
 }  // namespace voxgi::contracts

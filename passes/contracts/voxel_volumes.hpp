@@ -19,7 +19,9 @@ inline constexpr VkFormat kVoxelLightSharesFormat = VK_FORMAT_R32_UINT;
 // An injection's optional "faces" slot: the voxelizer's faces, read with texelFetch in compute.
 graph::SlotSpec voxel_faces_input();
 
-// An injection's optional "light_shares" output (written with the radiance, from the faces).
+// An injection's optional "light_shares" output (written with the radiance, from the faces),
+// and the check that a pass writing it also reads the faces.
 graph::SlotSpec voxel_light_shares_output();
+void check_light_shares_have_faces(graph::PassCheck& check);
 
 }  // namespace voxgi::contracts

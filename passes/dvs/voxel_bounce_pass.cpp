@@ -161,9 +161,10 @@ void validate_voxel_bounce(graph::PassCheck& check) {
   }
   graph::check_same_clipmap_layout(
       check, "radiance", {"albedo", "normal", "direct", "faces", "direct_shares", "light_shares"});
-  if (check.has("light_shares") && !(check.has("faces") && check.has("direct_shares"))) {
+  contracts::check_light_shares_have_faces(check);
+  if (check.has("light_shares") && !check.has("direct_shares")) {
     check.slot_error("light_shares",
-                     "needs the faces and direct_shares inputs bound (shares are per face group)");
+                     "needs the direct_shares input bound (the direct light's shares)");
   }
 }
 

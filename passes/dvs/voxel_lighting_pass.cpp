@@ -151,9 +151,7 @@ void validate_voxel_lighting(graph::PassCheck& check) {
   graph::check_same_clipmap_layout(
       check, "radiance",
       {"albedo", "normal", "emission", "direct", "faces", "light_shares", "direct_shares"});
-  if (check.has("light_shares") && !check.has("faces")) {
-    check.slot_error("light_shares", "needs the faces input bound (shares are per face group)");
-  }
+  contracts::check_light_shares_have_faces(check);
   if (check.has("light_shares") && check.has("direct") != check.has("direct_shares")) {
     check.slot_error("direct_shares",
                      "bind it exactly when 'direct' is (the bounces need the direct light's "

@@ -165,9 +165,7 @@ void register_inject(graph::Registry& registry) {
     contracts::check_clipmap_info_size(check);
     graph::check_same_clipmap_layout(check, "radiance",
                                      {"albedo", "normal", "emission", "faces", "light_shares"});
-    if (check.has("light_shares") && !check.has("faces")) {
-      check.slot_error("light_shares", "needs the faces input bound (shares are per face group)");
-    }
+    contracts::check_light_shares_have_faces(check);
   };
   registry.add(std::move(info), [] { return std::make_unique<InjectPass>(); });
 }

@@ -113,23 +113,25 @@ float voxel_face_offset(uvec4 faces, int g) {
   return float(voxel_face_bits(faces, g) >> 12) / VOXEL_FACE_OFFSET_HALF_STEPS - 1.0;
 }
 
-// The groups a faces texel holds: their unit normals, their shares, rescaled to add up to
-// exactly 1 (the 5-bit shares only nearly do), and their plane offsets (voxels). Returns how
-// many (0: no faces, e.g. a voxel of average_rgba8 or an empty one).
+// The groups a faces texel holds, by group index g (0..5): their unit normals, their shares,
+// rescaled to add up to exactly 1 (the 5-bit shares only nearly do), and their plane offsets
+// (voxels); share 0 (normal and offset 0) for a group the voxel does not hold. Returns how many
+// it holds (0: no faces, e.g. a voxel of average_rgba8 or an empty one).
 int voxel_faces_unpack(uvec4 faces, out vec3 normals[VOXEL_FACE_GROUPS],
                        out float shares[VOXEL_FACE_GROUPS], out float offsets[VOXEL_FACE_GROUPS]) {
   int count = 0;
   float total = 0.0;
   for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-    float share = voxel_face_share(faces, g);
-    if (share <= 0.0) continue;
-    normals[count] = voxel_face_normal(faces, g);
-    shares[count] = share;
-    offsets[count] = voxel_face_offset(faces, g);
-    total += share;
-    ++count;
+    shares[g] = voxel_face_share(faces, g);
+    bool held = shares[g] > 0.0;
+    normals[g] = held ? voxel_face_normal(faces, g) : vec3(0.0);
+    offsets[g] = held ? voxel_face_offset(faces, g) : 0.0;
+    total += shares[g];
+    count += held ? 1 : 0;
   }
-  for (int i = 0; i < count; ++i) shares[i] /= total;
+  if (count > 0) {
+    for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) shares[g] /= total;
+  }
   return count;
 }
 int voxel_faces_unpack(uvec4 faces, out vec3 normals[VOXEL_FACE_GROUPS],
@@ -163,6 +165,18 @@ uint voxel_pack_light_shares(float group_light[VOXEL_FACE_GROUPS]) {
     shares = voxel_pack_light_share(shares, g, group_light[g] / light);
   }
   return shares;
+}
+// The light shares of a texel, by group index, rescaled to add up to exactly 1; false (all 0)
+// where it holds none.
+bool voxel_light_shares_unpack(uint bits, out float shares[VOXEL_FACE_GROUPS]) {
+  float total = 0.0;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    shares[g] = voxel_light_share(bits, g);
+    total += shares[g];
+  }
+  if (!(total > 0.0)) return false;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) shares[g] /= total;
+  return true;
 }
 
 float voxel_encode_plane_offset(float d) {

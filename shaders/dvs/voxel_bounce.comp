@@ -93,19 +93,14 @@ void main() {
   }
   imageStore(out_radiance, texel, vec4(sanitize_radiance(radiance), opacity));
 #if HAS_LIGHT_SHARES
-  uvec4 faces = texelFetch(voxel_faces, texel, 0);
-  uint lit = texelFetch(direct_shares, texel, 0).r;
+  vec3 normals[VOXEL_FACE_GROUPS];
+  float area[VOXEL_FACE_GROUPS], direct_share[VOXEL_FACE_GROUPS];
+  voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), normals, area);
+  bool lit = voxel_light_shares_unpack(texelFetch(direct_shares, texel, 0).r, direct_share);
   float direct_light = voxel_luminance(radiance - bounce), bounce_light = voxel_luminance(bounce);
-  float area = 0.0, lit_total = 0.0;
-  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-    area += voxel_face_share(faces, g);
-    lit_total += voxel_light_share(lit, g);
-  }
   float group_light[VOXEL_FACE_GROUPS];
   for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-    float s = area > 0.0 ? voxel_face_share(faces, g) / area : 0.0;
-    float d = lit_total > 0.0 ? voxel_light_share(lit, g) / lit_total : s;
-    group_light[g] = d * direct_light + s * bounce_light;
+    group_light[g] = (lit ? direct_share[g] : area[g]) * direct_light + area[g] * bounce_light;
   }
   imageStore(out_light_shares, texel, uvec4(voxel_pack_light_shares(group_light)));
 #endif

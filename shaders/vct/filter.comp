@@ -136,52 +136,60 @@ bool finer_level_covers(int level, ivec3 window) {
 layout(set = 0, binding = 16) uniform usampler3D light_shares;
 #endif
 
+// A voxel's face groups as directional_light needs them, unpacked once for all six volumes:
+// normals, area shares and light shares (contracts/voxel_volumes.glsl; the area shares where
+// the injection wrote none), by group index. count 0: no faces.
+struct OwnFaces {
+  vec3 normals[VOXEL_FACE_GROUPS];
+  float area[VOXEL_FACE_GROUPS];
+  float light[VOXEL_FACE_GROUPS];
+  int count;
+};
+
+OwnFaces own_faces(ivec3 texel) {
+  OwnFaces f;
+  f.count = voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), f.normals, f.area);
+  bool lit = false;
+#if LIGHT_SHARES
+  lit = voxel_light_shares_unpack(texelFetch(light_shares, texel, 0).r, f.light);
+#endif
+  if (!lit) f.light = f.area;
+  return f;
+}
+
 // How bright a voxel that holds its own injected light looks to a cone travelling along
 // `volume`'s axis t, relative to its mean radiance (the injected value): from its face groups'
-// normals n_g, area shares s_g and light shares l_g (contracts/voxel_volumes.glsl; the area
-// shares where the injection wrote none). Along t a group shows the part |n_g.t| of its area
-// towards the cone (n_g.t < 0: T in all) or away from it (A), and keeps the rest of its light
-// seen edge-on (E): a cone travelling along x and down reads a floor through both its x and
-// its -y volume, and the floor must look as bright in both (halving edge-on surfaces made
-// every view 15-30 points dark; docs/error-budget.md). Each face towards the cone hides as
-// much back area as its own, so the voxel's footprint is max(T, A) + E, and the fronts send
-// their light over it:
+// normals n_g, area shares s_g and light shares l_g (OwnFaces). Along t a group shows the
+// part |n_g.t| of its area towards the cone (n_g.t < 0: T in all) or away from it (A), and
+// keeps the rest of its light seen edge-on (E): a cone travelling along x and down reads a
+// floor through both its x and its -y volume, and the floor must look as bright in both
+// (halving edge-on surfaces made every view 15-30 points dark; docs/error-budget.md). Each
+// face towards the cone hides as much back area as its own, so the voxel's footprint is
+// max(T, A) + E, and the fronts send their light over it:
 //   factor = (sum over fronts of l_g |n_g.t| + sum of l_g (1 - |n_g.t|)) / (max(T, A) + E).
 // A sunlit floor's voxels thus send nothing down through it and a wall's nothing out of its
 // back; a thin wall lit on one face sends that face's light (twice the voxel's mean) towards
 // its lit side and none through; a voxel whose groups are lit alike is never brighter than its
 // mean. The cone tracer's facing test (contracts/cone_trace.glsl) refines this between the
 // axes at the finest level's mip 0.
-float directional_light(ivec3 texel, int volume) {
-  uvec4 faces = texelFetch(voxel_faces, texel, 0);
-  uint lit = 0u;
-#if LIGHT_SHARES
-  lit = texelFetch(light_shares, texel, 0).r;
-#endif
+float directional_light(OwnFaces f, int volume) {
+  if (f.count == 0) return 1.0;
   int axis = volume / 2;
   float travel = (volume & 1) == 0 ? 1.0 : -1.0;
-  float area = 0.0, light = 0.0;
-  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-    area += voxel_face_share(faces, g);
-    light += voxel_light_share(lit, g);
-  }
-  if (!(area > 0.0)) return 1.0;
-  bool by_area = !(light > 0.0);
   float towards = 0.0, away = 0.0, edge = 0.0, shown = 0.0;
   for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-    float s = voxel_face_share(faces, g) / area;
+    float s = f.area[g];
     if (s <= 0.0) continue;
-    float l = by_area ? s : voxel_light_share(lit, g) / light;
-    float c = voxel_face_normal(faces, g)[axis] * travel;
+    float c = f.normals[g][axis] * travel;
     float projected = abs(c);
     if (c < 0.0) {
       towards += s * projected;
-      shown += l * projected;
+      shown += f.light[g] * projected;
     } else {
       away += s * projected;
     }
     edge += s * (1.0 - projected);
-    shown += l * (1.0 - projected);
+    shown += f.light[g] * (1.0 - projected);
   }
   float footprint = max(towards, away) + edge;
   return footprint > 1e-6 ? shown / footprint : 0.0;
@@ -267,11 +275,16 @@ void main() {
 #if LEVEL_COVERAGE
       coverage = level_coverage(texelFetch(voxel_normal, texel, 0), level);
 #endif
+#if FACE_FACING && ANISOTROPIC
+      OwnFaces faces;
+      faces.count = 0;
+      if (lit) faces = own_faces(texel);
+#endif
       for (int v = 0; v < VOLUMES; ++v) {
         float a = injected.a * coverage[v / 2];
         vec3 rgb = injected.rgb;
 #if FACE_FACING && ANISOTROPIC
-        if (lit) rgb *= directional_light(texel, v);
+        if (lit) rgb *= directional_light(faces, v);
 #endif
         store_dst(v, texel, vec4(rgb * a, a));
       }

@@ -156,22 +156,19 @@ void main() {
   vec3 irradiance = vec3(0.0);
   int groups = 0;
 #if HAS_FACES
-  uvec4 faces = texelFetch(voxel_faces, texel, 0);
-  float area = 0.0;
-  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) area += voxel_face_share(faces, g);
+  vec3 face_normals[VOXEL_FACE_GROUPS];
+  float face_shares[VOXEL_FACE_GROUPS], face_offsets[VOXEL_FACE_GROUPS];
+  groups = voxel_faces_unpack(texelFetch(voxel_faces, texel, 0), face_normals, face_shares,
+                              face_offsets);
   // Each group's light (luminance x area share), for the light shares.
   float group_light[VOXEL_FACE_GROUPS];
   for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
     group_light[g] = 0.0;
-    float share = voxel_face_share(faces, g);
-    if (share <= 0.0) continue;
-    share /= area;
-    vec3 n = voxel_face_normal(faces, g);
-    vec3 p = center + n * (voxel_face_offset(faces, g) * size) + voxel_clipmap.anchor.xyz;
-    vec3 e = surface_irradiance(p, n, true, size);
-    irradiance += share * e;
-    group_light[g] = share * voxel_luminance(reflectance * e + emission);
-    ++groups;
+    if (face_shares[g] <= 0.0) continue;
+    vec3 p = center + face_normals[g] * (face_offsets[g] * size) + voxel_clipmap.anchor.xyz;
+    vec3 e = surface_irradiance(p, face_normals[g], true, size);
+    irradiance += face_shares[g] * e;
+    group_light[g] = face_shares[g] * voxel_luminance(reflectance * e + emission);
   }
 #if HAS_LIGHT_SHARES
   imageStore(out_light_shares, texel, uvec4(voxel_pack_light_shares(group_light)));

@@ -5,9 +5,13 @@
 // volumes (contracts/cone_trace.glsl).
 //   diffuse (SPECULAR 0): outgoing radiance c_diff / pi * E with E from the diffuse cones;
 //                         ambient-occlusion visibility in `ao` (full res) or scratch alpha.
+//                         Neighbours are averaged (interleaved sets) and upsampled (half
+//                         resolution) as E / pi, and each pixel multiplies by its own c_diff,
+//                         so a texture's or an emitter's albedo is not blurred into the light.
 //   specular (SPECULAR 1): one cone along the reflection, aperture from GGX roughness, times
 //                          Schlick's Fresnel at n.v.
-// HALF 1: writes the half-resolution scratch (rgb result, a = AO) for upsample.comp.
+// HALF 1: writes the half-resolution scratch (rgb: E / pi or the specular result, a = AO) for
+// upsample.comp.
 // HAS_SHADOW 1 (diffuse only): also a soft-shadow cone towards the scene's first light (seed
 // 001 section 4.3): `shadow` = 1 - the cone's opacity, always at full resolution; with
 // SHADOW_ONLY 1 the dispatch writes nothing else (the extra pass of resolution 'half').
@@ -186,9 +190,11 @@ vec4 interleave_resolve(vec4 own) {
 #endif
 
 // This invocation's gather: rgb result and AO visibility in a; false where nothing was traced
-// (no surface, or outside the voxel volume). Writes the shadow output itself.
-bool gather(ivec2 pixel, out GbufferSample g, out vec4 value) {
+// (no surface, or outside the voxel volume). Writes the shadow output itself. The diffuse
+// result is E / pi, which the caller multiplies by `reflectance` (c_diff; 1 for specular).
+bool gather(ivec2 pixel, out GbufferSample g, out vec4 value, out vec3 reflectance) {
   value = vec4(0.0, 0.0, 0.0, 1.0);
+  reflectance = vec3(1.0);
 #if HALF
   ivec2 source = gbuffer_block_representative(pixel);
 #else
@@ -238,8 +244,8 @@ bool gather(ivec2 pixel, out GbufferSample g, out vec4 value) {
                                            interleave_rotation(pixel),
                                            interleave_ring_position(pixel),
                                            pc.normal_offset * voxel, s, visibility);
-  vec3 c_diff = g.base_color * (1.0 - g.metallic);
-  value = vec4(c_diff / VCT_PI * irradiance, visibility);
+  reflectance = g.base_color * (1.0 - g.metallic);
+  value = vec4(irradiance / VCT_PI, visibility);
   return true;
 #endif
 }
@@ -250,7 +256,8 @@ void main() {
   GbufferSample g;
   g.valid = false;
   vec4 value = vec4(0.0, 0.0, 0.0, 1.0);
-  bool traced = inside && gather(pixel, g, value);
+  vec3 reflectance = vec3(1.0);
+  bool traced = inside && gather(pixel, g, value, reflectance);
 #if INTERLEAVED
   // Every invocation of the workgroup reaches the barrier, inside the image or not.
   int self = int(gl_LocalInvocationID.y) * TILE + int(gl_LocalInvocationID.x);
@@ -260,5 +267,9 @@ void main() {
   barrier();
   if (traced && pc.interleave > 1) value = interleave_resolve(value);
 #endif
-  if (inside) store(pixel, value.rgb, value.a);
+#if HALF
+  // upsample.comp multiplies by each full-resolution pixel's own c_diff.
+  reflectance = vec3(1.0);
+#endif
+  if (inside) store(pixel, value.rgb * reflectance, value.a);
 }

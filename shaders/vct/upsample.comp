@@ -3,13 +3,17 @@
 // Depth- and normal-aware upsampling of the half-resolution cone-tracing scratch (rgb result,
 // a = AO visibility) to full resolution: the four nearest half-resolution samples, each at
 // the G-buffer pixel it was traced from, weighted bilinearly x depth similarity x normal
-// similarity; where all four belong to other surfaces the closest in depth is taken.
+// similarity; where all four belong to other surfaces the closest in depth is taken. The
+// diffuse scratch holds E / pi (trace.comp), multiplied here by each pixel's own c_diff.
 #include "lib/common.glsl"
 #include "lib/frame.glsl"
 #include "vct/gbuffer_sample.glsl"
 
 #ifndef HAS_AO
 #define HAS_AO 0
+#endif
+#ifndef SPECULAR
+#define SPECULAR 0
 #endif
 #ifndef AO_FORMAT
 #define AO_FORMAT r16f
@@ -71,5 +75,9 @@ void main() {
       closest = value;
     }
   }
-  store(pixel, weight_sum > 1e-4 ? sum / weight_sum : closest);
+  vec4 value = weight_sum > 1e-4 ? sum / weight_sum : closest;
+#if !SPECULAR
+  value.rgb *= g.base_color * (1.0 - g.metallic);
+#endif
+  store(pixel, value);
 }

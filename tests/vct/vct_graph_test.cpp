@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -229,9 +230,42 @@ TEST_F(VctGraphTest, StaticFrameRecordsNoBarrierOnTheVoxelVolumes) {
       << "a static frame differs from the first";
 }
 
+// The interleaved gather averages each pixel's n x n window over its own plane, and half
+// resolution upsamples; both must blend the light (E / pi), never the reflected result, or a
+// surface's albedo bleeds into its neighbours': the built-in box's emitter has a black base
+// colour on the ceiling's plane (1 mm under it), so its indirect light is exactly 0 however
+// bright the ceiling beside it is, as in the path tracer.
+void expect_black_emitter_reflects_nothing(RenderHarness& harness, const RenderedImage& indirect,
+                                           const char* what) {
+  auto pixel_of = [&](float x, float y, float z) {
+    const glm::vec4 clip = harness.view_proj() * glm::vec4(x, y, z, 1.0f);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return glm::uvec2(uint32_t(glm::clamp(int((ndc.x * 0.5f + 0.5f) * float(indirect.width)), 0,
+                                          int(indirect.width) - 1)),
+                      uint32_t(glm::clamp(int((ndc.y * 0.5f + 0.5f) * float(indirect.height)), 0,
+                                          int(indirect.height) - 1)));
+  };
+  // The inner part of the light quad (x 0.213-0.343, z 0.227-0.332 at y = 0.548).
+  float emitter_max = 0.0f;
+  for (float x = 0.233f; x <= 0.323f; x += 0.01f) {
+    for (float z = 0.247f; z <= 0.312f; z += 0.005f) {
+      const glm::uvec2 p = pixel_of(x, 0.548f, z);
+      const glm::vec4 v = indirect.at(p.x, p.y);
+      emitter_max = std::max({emitter_max, v.r, v.g, v.b});
+    }
+  }
+  const glm::uvec2 beside = pixel_of(0.16f, 0.5488f, 0.28f);
+  const float ceiling = indirect.at(beside.x, beside.y).g;
+  std::printf("[%s] emitter: max indirect %.5f; ceiling beside it %.4f\n", what, emitter_max,
+              ceiling);
+  EXPECT_GT(ceiling, 0.02f) << what;
+  EXPECT_EQ(emitter_max, 0.0f) << what
+                               << ": the emitter's black albedo takes its neighbours' light";
+}
+
 // Half resolution with depth- and normal-aware upsampling stays close to full resolution:
 // mean absolute difference under 15% of the mean (measured 11% at 96^2, where contact
-// shadows and silhouettes are a few pixels wide).
+// shadows and silhouettes are a few pixels wide); at both, the black emitter reflects nothing.
 TEST_F(VctGraphTest, HalfResolutionMatchesFullResolution) {
   RenderSetup full = dense_vct_setup();
   full.scene = "cornell";
@@ -245,6 +279,8 @@ TEST_F(VctGraphTest, HalfResolutionMatchesFullResolution) {
   const RenderedImage a = full_harness.output("indirect");
   const RenderedImage b = half_harness.output("indirect");
   expect_finite_non_negative(b, "half-resolution indirect");
+  expect_black_emitter_reflects_nothing(full_harness, a, "full resolution");
+  expect_black_emitter_reflects_nothing(half_harness, b, "half resolution");
   double diff = 0.0, total = 0.0;
   for (size_t i = 0; i < a.rgba.size(); i += 4) {
     for (int c = 0; c < 3; ++c) {

@@ -45,6 +45,10 @@ GbufferSample gbuffer_sample(ivec2 pixel) {
   return g;
 }
 
+// Diffuse reflectance c_diff = base colour x (1 - metallic): what the gathered E / pi is
+// multiplied by, per full-resolution pixel, after any averaging or upsampling.
+vec3 gbuffer_diffuse_reflectance(GbufferSample g) { return g.base_color * (1.0 - g.metallic); }
+
 // The full-resolution pixel a half-resolution pixel is traced from: the nearest (smallest
 // depth) of its 2x2 block, so silhouettes keep the foreground surface. Deterministic, so the
 // upsampler can find it again.

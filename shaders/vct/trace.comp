@@ -191,7 +191,8 @@ vec4 interleave_resolve(vec4 own) {
 
 // This invocation's gather: rgb result and AO visibility in a; false where nothing was traced
 // (no surface, or outside the voxel volume). Writes the shadow output itself. The diffuse
-// result is E / pi, which the caller multiplies by `reflectance` (c_diff; 1 for specular).
+// result is E / pi, which the caller multiplies by `reflectance` after the interleaved
+// average (c_diff; 1 for specular and at half resolution, where upsample.comp multiplies).
 bool gather(ivec2 pixel, out GbufferSample g, out vec4 value, out vec3 reflectance) {
   value = vec4(0.0, 0.0, 0.0, 1.0);
   reflectance = vec3(1.0);
@@ -244,7 +245,9 @@ bool gather(ivec2 pixel, out GbufferSample g, out vec4 value, out vec3 reflectan
                                            interleave_rotation(pixel),
                                            interleave_ring_position(pixel),
                                            pc.normal_offset * voxel, s, visibility);
-  reflectance = g.base_color * (1.0 - g.metallic);
+#if !HALF
+  reflectance = gbuffer_diffuse_reflectance(g);
+#endif
   value = vec4(irradiance / VCT_PI, visibility);
   return true;
 #endif
@@ -266,10 +269,6 @@ void main() {
   interleave_normal[self] = traced ? g.normal : vec3(0.0);
   barrier();
   if (traced && pc.interleave > 1) value = interleave_resolve(value);
-#endif
-#if HALF
-  // upsample.comp multiplies by each full-resolution pixel's own c_diff.
-  reflectance = vec3(1.0);
 #endif
   if (inside) store(pixel, value.rgb * reflectance, value.a);
 }

@@ -77,7 +77,7 @@ void main() {
   }
   vec4 value = weight_sum > 1e-4 ? sum / weight_sum : closest;
 #if !SPECULAR
-  value.rgb *= g.base_color * (1.0 - g.metallic);
+  value.rgb *= gbuffer_diffuse_reflectance(g);
 #endif
   store(pixel, value);
 }

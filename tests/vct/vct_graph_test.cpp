@@ -38,6 +38,15 @@ RenderSetup vct_setup(scene::Scene scene, uint32_t size = 128) {
   return setup;
 }
 
+// The pixel of `image` (rendered by `harness`) that world point `p` projects to, clamped into
+// the image.
+glm::ivec2 pixel_of(const RenderHarness& harness, const RenderedImage& image, glm::vec3 p) {
+  const glm::vec4 clip = harness.view_proj() * glm::vec4(p, 1.0f);
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  return {glm::clamp(int((ndc.x * 0.5f + 0.5f) * float(image.width)), 0, int(image.width) - 1),
+          glm::clamp(int((ndc.y * 0.5f + 0.5f) * float(image.height)), 0, int(image.height) - 1)};
+}
+
 // Mean of the rgb channels over pixels where `mask` holds.
 glm::vec3 mean_rgb(const RenderedImage& image) {
   glm::dvec3 sum(0.0);
@@ -148,10 +157,8 @@ TEST_F(VctGraphTest, CornellBleedsTheRightColourAndIsStable) {
 
   // The builtin box: red wall at x = 0.556, green wall at x = 0, ceiling at y = 0.5488.
   auto ceiling_colour = [&](float x) {
-    const glm::vec4 clip = harness.view_proj() * glm::vec4(x, 0.5480f, 0.30f, 1.0f);
-    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-    const int px = static_cast<int>((ndc.x * 0.5f + 0.5f) * float(indirect.width));
-    const int py = static_cast<int>((ndc.y * 0.5f + 0.5f) * float(indirect.height));
+    const glm::ivec2 centre = pixel_of(harness, indirect, {x, 0.5480f, 0.30f});
+    const int px = centre.x, py = centre.y;
     glm::vec3 sum(0.0f);
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
@@ -235,27 +242,19 @@ TEST_F(VctGraphTest, StaticFrameRecordsNoBarrierOnTheVoxelVolumes) {
 // surface's albedo bleeds into its neighbours': the built-in box's emitter has a black base
 // colour on the ceiling's plane (1 mm under it), so its indirect light is exactly 0 however
 // bright the ceiling beside it is, as in the path tracer.
-void expect_black_emitter_reflects_nothing(RenderHarness& harness, const RenderedImage& indirect,
-                                           const char* what) {
-  auto pixel_of = [&](float x, float y, float z) {
-    const glm::vec4 clip = harness.view_proj() * glm::vec4(x, y, z, 1.0f);
-    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
-    return glm::uvec2(uint32_t(glm::clamp(int((ndc.x * 0.5f + 0.5f) * float(indirect.width)), 0,
-                                          int(indirect.width) - 1)),
-                      uint32_t(glm::clamp(int((ndc.y * 0.5f + 0.5f) * float(indirect.height)), 0,
-                                          int(indirect.height) - 1)));
-  };
+void expect_black_emitter_reflects_nothing(const RenderHarness& harness,
+                                           const RenderedImage& indirect, const char* what) {
   // The inner part of the light quad (x 0.213-0.343, z 0.227-0.332 at y = 0.548).
   float emitter_max = 0.0f;
   for (float x = 0.233f; x <= 0.323f; x += 0.01f) {
     for (float z = 0.247f; z <= 0.312f; z += 0.005f) {
-      const glm::uvec2 p = pixel_of(x, 0.548f, z);
-      const glm::vec4 v = indirect.at(p.x, p.y);
+      const glm::ivec2 p = pixel_of(harness, indirect, {x, 0.548f, z});
+      const glm::vec4 v = indirect.at(uint32_t(p.x), uint32_t(p.y));
       emitter_max = std::max({emitter_max, v.r, v.g, v.b});
     }
   }
-  const glm::uvec2 beside = pixel_of(0.16f, 0.5488f, 0.28f);
-  const float ceiling = indirect.at(beside.x, beside.y).g;
+  const glm::ivec2 beside = pixel_of(harness, indirect, {0.16f, 0.5488f, 0.28f});
+  const float ceiling = indirect.at(uint32_t(beside.x), uint32_t(beside.y)).g;
   std::printf("[%s] emitter: max indirect %.5f; ceiling beside it %.4f\n", what, emitter_max,
               ceiling);
   EXPECT_GT(ceiling, 0.02f) << what;

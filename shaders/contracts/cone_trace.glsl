@@ -288,9 +288,15 @@ vec4 vct_sample(vec3 p, vec3 dir, float lod) {
   lod = clamp(lod, float(finest), vct_max_lod());
   int k = int(floor(lod));
   float f = lod - float(k);
-  vec4 a = vct_fetch_lod(p, dir, k, finest);
-  if (f <= 0.0) return a;
-  return mix(a, vct_fetch_lod(p, dir, k + 1, finest), f);
+  // Both levels through one call: each call site of a fetch is a whole copy of the directional
+  // filter, and a driver that compiles the copies (lavapipe) takes seconds per pipeline.
+  vec4 a = vec4(0.0);
+  int fetches = f > 0.0 ? 2 : 1;
+  for (int i = 0; i < fetches; ++i) {
+    vec4 v = vct_fetch_lod(p, dir, k + i, finest);
+    a = i == 0 ? v : mix(a, v, f);
+  }
+  return a;
 }
 
 // Finer voxels where a cone meets a surface: how many levels of detail finer a step is marched
@@ -544,19 +550,24 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     if (!spread && !axis_inside) break;
     float ratio = st.step_length / st.voxel;
     float falloff = 1.0 / (1.0 + s.ao_falloff * 0.5 * st.diameter / base_size);
-    vec4 shared_sample =
-        spread ? vec4(0.0) : vct_sample_step(st.p, cone.direction, st.lod, st.step_length, ratio);
+    // Unspread, the lanes share the axis's sample, taken by the first lane that needs it (one
+    // call site of vct_sample_step: see vct_sample).
+    vec4 v = vec4(0.0);
+    bool sampled = false;
     bool any_inside = !spread;
     for (int j = 0; j < lanes; ++j) {
       if (lane_opacity[j] >= VCT_OPACITY_THRESHOLD) continue;
-      vec4 v = shared_sample;
+      vec3 q = st.p;
+      vec3 d = cone.direction;
       if (spread) {
         // Same height as the axis's sample (lift included): the lanes share its level of detail.
-        vec3 q = st.p + t * (lane_direction[j] - cone.direction);
+        q = st.p + t * (lane_direction[j] - cone.direction);
+        d = lane_direction[j];
         if (voxel_finest_level(q, VCT_WINDOW_MARGIN) < 0) continue;
         any_inside = true;
-        v = vct_sample_step(q, lane_direction[j], st.lod, st.step_length, ratio);
       }
+      if (spread || !sampled) v = vct_sample_step(q, d, st.lod, st.step_length, ratio);
+      sampled = true;
       vct_composite(v, ratio, falloff, lane_radiance[j], lane_opacity[j], lane_occlusion[j]);
     }
     if (!any_inside) break;
@@ -622,29 +633,55 @@ void vct_diffuse_cone(int index, int count, float rotation, float ring_position,
 
 // Irradiance E (W/m^2) at anchor-relative p, a point of a surface with unit normal n, from
 // `count` diffuse cones turned by `rotation` about n and placed at `ring_position` in their
-// rings (vct_diffuse_cone), and the
-// ambient-occlusion visibility (1 = open) in `visibility`. The cones start `normal_offset`
-// (metres) off the surface. Outgoing diffuse radiance is c_diff / pi * E.
-vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float rotation, float ring_position,
-                            float normal_offset, VctTraceSettings s, out float visibility) {
+// rings (vct_diffuse_cone), and the ambient-occlusion visibility (1 = open) in `visibility`.
+// The cones start `normal_offset` (metres) off the surface. Outgoing diffuse radiance is
+// c_diff / pi * E. With `trace_extra`, one more cone, `extra` with `extra_max_distance`, goes
+// through the same loop first and its opacity comes back in `extra_opacity` (a soft-shadow
+// cone): every call site of vct_trace_cone is a whole copy of the tracer in the pipeline, and a
+// driver that compiles the copies (lavapipe) takes seconds per pipeline.
+vec3 vct_diffuse_irradiance_and_cone(vec3 p, vec3 n, int count, float rotation,
+                                     float ring_position, float normal_offset,
+                                     VctTraceSettings s, bool trace_extra, VctCone extra,
+                                     float extra_max_distance, out float visibility,
+                                     out float extra_opacity) {
   vec3 t, b;
   vct_tangent_frame(n, t, b);
   vec3 origin = p + n * normal_offset;
   vec3 irradiance = vec3(0.0);
   float occlusion = 0.0;
+  extra_opacity = 0.0;
   count = clamp(count, 1, VCT_MAX_DIFFUSE_CONES);
-  for (int i = 0; i < count; ++i) {
-    vec3 d;
-    float weight, tan_half;
-    vct_diffuse_cone(i, count, rotation, ring_position, d, weight, tan_half);
-    VctCone cone = vct_cone_from_surface(origin, normalize(t * d.x + b * d.y + n * d.z), tan_half,
-                                         n, normal_offset);
-    VctConeResult r = vct_trace_cone(cone, s);
+  for (int i = trace_extra ? -1 : 0; i < count; ++i) {
+    VctCone cone = extra;
+    VctTraceSettings cone_settings = s;
+    float weight = 0.0;
+    if (i >= 0) {
+      vec3 d;
+      float tan_half;
+      vct_diffuse_cone(i, count, rotation, ring_position, d, weight, tan_half);
+      cone = vct_cone_from_surface(origin, normalize(t * d.x + b * d.y + n * d.z), tan_half, n,
+                                   normal_offset);
+    } else {
+      cone_settings.max_distance = extra_max_distance;
+    }
+    VctConeResult r = vct_trace_cone(cone, cone_settings);
+    if (i < 0) {
+      extra_opacity = r.opacity;
+      continue;
+    }
     irradiance += weight * r.radiance;
     occlusion += weight * r.occlusion;
   }
   visibility = clamp(1.0 - occlusion / VCT_PI, 0.0, 1.0);
   return irradiance;
+}
+
+vec3 vct_diffuse_irradiance(vec3 p, vec3 n, int count, float rotation, float ring_position,
+                            float normal_offset, VctTraceSettings s, out float visibility) {
+  float unused;
+  return vct_diffuse_irradiance_and_cone(p, n, count, rotation, ring_position, normal_offset, s,
+                                         false, vct_cone_from_surface(p, n, 0.0, n, 0.0), 0.0,
+                                         visibility, unused);
 }
 
 // Specular cone aperture for a GGX perceptual roughness (alpha = roughness^2). The GGX

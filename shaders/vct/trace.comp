@@ -93,11 +93,15 @@ void store(ivec2 pixel, vec3 result, float visibility) {
 }
 
 #if HAS_SHADOW
-// Visibility of the scene's first light from a surface point: 1 - the opacity of a cone
-// towards it (1 without lights; 0 for surfaces facing away from it). The cone stops one voxel
-// short of a point or spot light, so the light's own fixture does not shadow it.
-float light_visibility(vec3 world, vec3 p, vec3 n, float voxel, VctTraceSettings s) {
-  if (scene_light_count() == 0u) return 1.0;
+// The soft-shadow cone towards the scene's first light, stopping one voxel short of a point or
+// spot light so that the light's own fixture does not shadow it. False where the visibility is
+// known without a cone (`known`: 1 without lights or with the light in this voxel, 0 for
+// surfaces facing away from it).
+bool light_cone(vec3 world, vec3 p, vec3 n, float voxel, VctTraceSettings s, out VctCone cone,
+                out float max_distance, out float known) {
+  known = 1.0;
+  max_distance = s.max_distance;
+  if (scene_light_count() == 0u) return false;
   SceneLight light = scene_lights[0];
   vec3 l;
   float distance_to_light = s.max_distance;
@@ -106,15 +110,29 @@ float light_visibility(vec3 world, vec3 p, vec3 n, float voxel, VctTraceSettings
   } else {
     vec3 to_light = light.position - world;
     distance_to_light = length(to_light);
-    if (!(distance_to_light > voxel)) return 1.0;  // the light is in this voxel
+    if (!(distance_to_light > voxel)) return false;  // the light is in this voxel
     l = to_light / distance_to_light;
   }
-  if (dot(n, l) <= 0.0) return 0.0;
+  if (dot(n, l) <= 0.0) {
+    known = 0.0;
+    return false;
+  }
   float offset = pc.normal_offset * voxel;
-  VctCone cone = vct_cone_from_surface(p + n * offset, l, pc.shadow_tan_half_angle, n, offset);
-  s.max_distance = min(s.max_distance, distance_to_light - voxel);
+  cone = vct_cone_from_surface(p + n * offset, l, pc.shadow_tan_half_angle, n, offset);
+  max_distance = min(s.max_distance, distance_to_light - voxel);
+  return true;
+}
+
+#if SHADOW_ONLY
+// Visibility of the scene's first light from a surface point: 1 - the opacity of its cone.
+float light_visibility(vec3 world, vec3 p, vec3 n, float voxel, VctTraceSettings s) {
+  VctCone cone;
+  float max_distance, known;
+  if (!light_cone(world, p, n, voxel, s, cone, max_distance, known)) return known;
+  s.max_distance = max_distance;
   return clamp(1.0 - vct_trace_cone(cone, s).opacity, 0.0, 1.0);
 }
+#endif
 #endif
 
 void store_shadow(ivec2 pixel, float visibility) {
@@ -219,10 +237,8 @@ bool gather(ivec2 pixel, out GbufferSample g, out vec4 value, out vec3 reflectan
   s.start_distance = pc.start_offset * voxel;
   s.ao_falloff = pc.ao_falloff;
   s.lanes = pc.lanes;
-#if HAS_SHADOW
-  store_shadow(pixel, light_visibility(g.position, p, g.normal, voxel, s));
-#endif
 #if SHADOW_ONLY
+  store_shadow(pixel, light_visibility(g.position, p, g.normal, voxel, s));
   return false;
 #elif SPECULAR
   vec3 v = safe_normalize(frame.camera_position.xyz - g.position, g.normal);
@@ -240,11 +256,24 @@ bool gather(ivec2 pixel, out GbufferSample g, out vec4 value, out vec3 reflectan
   value = vec4(fresnel * traced.radiance, 1.0);
   return true;
 #else
-  float visibility;
-  vec3 irradiance = vct_diffuse_irradiance(p, g.normal, pc.diffuse_cones,
-                                           interleave_rotation(pixel),
-                                           interleave_ring_position(pixel),
-                                           pc.normal_offset * voxel, s, visibility);
+  // The soft-shadow cone is traced in the diffuse cones' loop, as its first: a second call
+  // site of the cone tracer would double the pipeline's code (contracts/cone_trace.glsl).
+  VctCone shadow_cone = vct_cone_from_surface(p, g.normal, 0.0, g.normal, 0.0);
+  float shadow_max_distance = s.max_distance;
+  float shadow = 1.0;
+#if HAS_SHADOW
+  bool trace_shadow =
+      light_cone(g.position, p, g.normal, voxel, s, shadow_cone, shadow_max_distance, shadow);
+#else
+  const bool trace_shadow = false;
+#endif
+  float visibility, shadow_opacity;
+  vec3 irradiance = vct_diffuse_irradiance_and_cone(
+      p, g.normal, pc.diffuse_cones, interleave_rotation(pixel), interleave_ring_position(pixel),
+      pc.normal_offset * voxel, s, trace_shadow, shadow_cone, shadow_max_distance, visibility,
+      shadow_opacity);
+  if (trace_shadow) shadow = clamp(1.0 - shadow_opacity, 0.0, 1.0);
+  store_shadow(pixel, shadow);
 #if !HALF
   reflectance = gbuffer_diffuse_reflectance(g);
 #endif

@@ -23,4 +23,8 @@ void check_clipmap_info_size(graph::PassCheck& check) {
                        " bytes; VoxelClipmapInfo needs " + std::to_string(kVoxelClipmapInfoBytes));
 }
 
+gpu::ShaderDefine clipmap_levels_define(uint32_t clipmap_levels) {
+  return {"VOXEL_CLIPMAP_LEVELS", std::to_string(clipmap_levels)};
+}
+
 }  // namespace voxgi::contracts

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/pass.hpp"
 
 namespace voxgi::contracts {
@@ -38,5 +39,9 @@ graph::SlotSpec clipmap_info_input();
 // For validate hooks of the writer and the readers: reports slot "clipmap_info" when its
 // buffer is smaller than VoxelClipmapInfo.
 void check_clipmap_info_size(graph::PassCheck& check);
+
+// VOXEL_CLIPMAP_LEVELS for a shader that reads a clipmap of `clipmap_levels` levels: the bound
+// of voxel_finest_level's unrolled search, which otherwise tries all kVoxelMaxLevels.
+gpu::ShaderDefine clipmap_levels_define(uint32_t clipmap_levels);
 
 }  // namespace voxgi::contracts

@@ -58,6 +58,7 @@ class VoxelBouncePass final : public graph::Pass {
         ctx, "dvs/voxel_bounce.comp", bindings, sizeof(BouncePush), false,
         {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
          contracts::unwrapped_windows_define(ctx.info(volumes).clipmap_levels),
+         contracts::clipmap_levels_define(ctx.info(volumes).clipmap_levels),
          contracts::refine_levels_define(ctx.integer("refine")),
          {"HAS_LIGHT_SHARES", has_light_shares_ ? "1" : "0"}}));
     // The volumes' sampler of the cone-trace contract (no anisotropic filtering): a mipmapped

@@ -89,7 +89,9 @@ class ConeTracePass final : public graph::Pass {
     if (facing_) defines.push_back({"HAS_FACING", "1"});
     const char* volumes_slot =
         anisotropic_ ? contracts::kDirectionalSlots[0] : contracts::kFilteredSlot;
-    defines.push_back(contracts::unwrapped_windows_define(ctx.info(volumes_slot).clipmap_levels));
+    const uint32_t levels = ctx.info(volumes_slot).clipmap_levels;
+    defines.push_back(contracts::unwrapped_windows_define(levels));
+    defines.push_back(contracts::clipmap_levels_define(levels));
     defines.push_back(contracts::refine_levels_define(ctx.integer("refine")));
     std::vector<gpu::Binding> gbuffer = {{kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 0}};
     for (uint32_t i = 0; i < 4; ++i) {

@@ -87,6 +87,8 @@
 // where no level holds them so. (A margin of one voxel hid that layer: a ceiling and its light
 // in a 32^3 window's last layer took 40-66% of the Cornell box's indirect light with them.)
 #define VCT_WINDOW_MARGIN 0.5
+// Most mips of a volume: log2 of the largest voxel resolution (common.voxelize allows 1024).
+#define VCT_MAX_MIP 10
 // Widest cone aperture (half angle 60 degrees): wider cones jump to the coarsest mips at once.
 #define VCT_MAX_TAN_HALF_ANGLE 1.7320508
 
@@ -258,15 +260,18 @@ int vct_window_mip_limit(vec3 p, int level) {
 #endif
   ivec3 origin = voxel_clipmap.levels[level].origin_voxel.xyz;
   vec3 window = voxel_window_coord(p, level);
-  int mip = findMSB(r);
-  for (; mip > 0; --mip) {
-    float size = float(1 << mip);
-    vec3 remainder = vec3(origin - ((origin >> mip) << mip));
+  int top = findMSB(r);
+  // The coarsest fitting mip, by a loop of constant trip count without an early exit, which
+  // compilers unroll (llvmpipe's limit on loop iterations: voxel_finest_level).
+  int mip = 0;
+  for (int m = 1; m <= VCT_MAX_MIP; ++m) {
+    float size = float(1 << m);
+    vec3 remainder = vec3(origin - ((origin >> m) << m));
     // First texel of the footprint, in window voxels; the footprint is two texels wide.
     vec3 low = floor((window + remainder) / size - 0.5) * size - remainder;
-    if (all(greaterThanEqual(low, vec3(0.0))) && all(lessThanEqual(low + 2.0 * size, vec3(r)))) {
-      break;
-    }
+    bool fits =
+        all(greaterThanEqual(low, vec3(0.0))) && all(lessThanEqual(low + 2.0 * size, vec3(r)));
+    if (m <= top && fits) mip = m;
   }
   return mip;
 }
@@ -533,9 +538,7 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
   }
   float t = max(s.start_distance, 0.0);
   for (int i = 0; i < VCT_MAX_STEPS; ++i) {
-    float open = 0.0;  // the most transparent lane
-    for (int j = 0; j < lanes; ++j) open = max(open, 1.0 - lane_opacity[j]);
-    if (open <= 1.0 - VCT_OPACITY_THRESHOLD || t >= s.max_distance) break;
+    if (t >= s.max_distance) break;
     VctConeStep st;
     bool axis_inside = vct_cone_step(cone, frame, s, t, st);
     // A capped cone's voxels are narrower than the cone: one sample on its axis would be a
@@ -555,6 +558,9 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     vec4 v = vec4(0.0);
     bool sampled = false;
     bool any_inside = !spread;
+    // The most transparent lane after this step, found in the lanes' own loop: a loop of its
+    // own would add to llvmpipe's count of loop iterations (voxel_finest_level).
+    float open = 0.0;
     for (int j = 0; j < lanes; ++j) {
       if (lane_opacity[j] >= VCT_OPACITY_THRESHOLD) continue;
       vec3 q = st.p;
@@ -563,14 +569,18 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
         // Same height as the axis's sample (lift included): the lanes share its level of detail.
         q = st.p + t * (lane_direction[j] - cone.direction);
         d = lane_direction[j];
-        if (voxel_finest_level(q, VCT_WINDOW_MARGIN) < 0) continue;
+        if (voxel_finest_level(q, VCT_WINDOW_MARGIN) < 0) {
+          open = max(open, 1.0 - lane_opacity[j]);
+          continue;
+        }
         any_inside = true;
       }
       if (spread || !sampled) v = vct_sample_step(q, d, st.lod, st.step_length, ratio);
       sampled = true;
       vct_composite(v, ratio, falloff, lane_radiance[j], lane_opacity[j], lane_occlusion[j]);
+      open = max(open, 1.0 - lane_opacity[j]);
     }
-    if (!any_inside) break;
+    if (!any_inside || open <= 1.0 - VCT_OPACITY_THRESHOLD) break;
     t += st.step_length;
   }
   VctConeResult result;

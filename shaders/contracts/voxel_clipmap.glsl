@@ -29,6 +29,10 @@
 #endif
 
 #define VOXEL_CLIPMAP_MAX_LEVELS 8
+// Levels a shader may meet (contracts::clipmap_levels_define): the bound of voxel_finest_level.
+#ifndef VOXEL_CLIPMAP_LEVELS
+#define VOXEL_CLIPMAP_LEVELS VOXEL_CLIPMAP_MAX_LEVELS
+#endif
 
 struct VoxelClipmapLevel {
   // xyz: voxel index (in voxels of this level) of the window's min corner, counted from the
@@ -80,16 +84,20 @@ ivec3 voxel_texel(ivec3 window_voxel, int level) {
 }
 
 // The finest level whose window contains `relative_position` with `margin` voxels to spare,
-// or -1 when none does.
+// or -1 when none does. A constant trip count and no early exit, so that compilers unroll it:
+// llvmpipe ends every loop of an invocation once all its loops together have run 65535
+// iterations, and this search, run for every sample of every cone, counted towards that
+// (docs/error-budget.md, twenty-third round).
 int voxel_finest_level(vec3 relative_position, float margin) {
-  int r = voxel_resolution();
-  for (int level = 0; level < voxel_level_count(); ++level) {
+  float r = float(voxel_resolution());
+  int count = voxel_level_count();
+  int finest = -1;
+  for (int level = min(VOXEL_CLIPMAP_LEVELS, VOXEL_CLIPMAP_MAX_LEVELS) - 1; level >= 0; --level) {
     vec3 c = voxel_window_coord(relative_position, level);
-    if (all(greaterThanEqual(c, vec3(margin))) && all(lessThan(c, vec3(float(r) - margin)))) {
-      return level;
-    }
+    bool inside = all(greaterThanEqual(c, vec3(margin))) && all(lessThan(c, vec3(r - margin)));
+    if (level < count && inside) finest = level;
   }
-  return -1;
+  return finest;
 }
 
 #endif

@@ -279,6 +279,7 @@ struct ProbePush {
   float normal_offset;
   float start_distance;
   uint32_t count;
+  int32_t lanes;
 };
 
 }  // namespace
@@ -322,10 +323,16 @@ std::vector<ProbeResult> run_probes(VolumeGraph& graph, const std::string& info_
         graph.compiled().resources[static_cast<size_t>(r)].end_state.at(0).layout;
     images.push_back({sampler, image->view(), layout_now});
   }
-  const ProbePush push{
-      s.single_cone ? 1 : 0, s.diffuse_cones,  s.tan_half_angle,
-      s.step_factor,         s.max_distance,   s.ao_falloff,
-      s.normal_offset,       s.start_distance, static_cast<uint32_t>(probes.size())};
+  const ProbePush push{s.single_cone ? 1 : 0,
+                       s.diffuse_cones,
+                       s.tan_half_angle,
+                       s.step_factor,
+                       s.max_distance,
+                       s.ao_falloff,
+                       s.normal_offset,
+                       s.start_distance,
+                       static_cast<uint32_t>(probes.size()),
+                       s.lanes};
   // Graph outputs end the frame ready for read-back; sample them in GENERAL and put them back.
   std::vector<std::pair<gpu::Image*, VkImageLayout>> moved;
   for (size_t i = 0; i < images.size(); ++i) {

@@ -123,6 +123,7 @@ struct ProbeSettings {
   float normal_offset = 0.0f;  // metres
   float start_distance = 0.0f;
   bool anisotropic = true;
+  int lanes = 1;  // of a cone capped near its receiver (1: the axis, as the source documents)
 };
 
 // Runs the probe shader against the graph's clipmap info buffer and filtered volumes

@@ -25,6 +25,7 @@ layout(push_constant) uniform Push {
   float normal_offset;
   float start_distance;
   uint count;
+  int lanes;  // of a capped cone; 1: the library's cones as the source documents trace them
 } pc;
 
 void main() {
@@ -37,7 +38,7 @@ void main() {
   s.max_distance = pc.max_distance;
   s.start_distance = pc.start_distance;
   s.ao_falloff = pc.ao_falloff;
-  s.lanes = 1;  // the library's cones as the source documents trace them
+  s.lanes = pc.lanes;
   if (pc.single_cone != 0) {
     // A free cone in a medium: no receiver surface.
     VctCone cone = vct_cone_from_surface(p, d, pc.tan_half_angle, vec3(0.0), 0.0);

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 #include "engine/scene/builtin_scenes.hpp"
 #include "tests/gpu/gpu_test_env.hpp"
@@ -268,59 +270,60 @@ TEST_P(ConeTraceEnergyTest, StepFactorDoesNotChangeTransmittance) {
   for (float t : transmittance) EXPECT_NEAR(t, expected, 0.05f);
 }
 
-// The same uniform emitter seen through a three-level clipmap (level edges 4, 8 and 16 m,
-// windows off-centre so the toroidal wrap and the level consistency of vct.filter are
-// exercised): cones cross from level to level and still return pi * L.
-TEST_F(ConeTraceClipmapTest, UniformEmitterAcrossThreeLevels) {
-  VolumeData data;
-  fill_radiance(
-      data,
-      [](glm::vec3 c) {
-        return glm::length(c) >= 1.0f ? glm::vec4(1.0f, 1.0f, 1.0f, 1.0f) : glm::vec4(0.0f);
-      },
-      3);
-  VolumeGraph graph(filter_graph(kR, 3, true), &data, scene::make_builtin_scene("empty"));
-  graph.render();
+// A uniform emitter of radiance 1 beyond 1 m of the origin, through a three-level clipmap
+// (level edges 4, 8 and 16 m, windows off-centre so the toroidal wrap and the level consistency
+// of vct.filter are exercised): E / (pi L) at the origin for two normals, gathered with `s`.
+std::vector<float> emitter_across_three_levels(VolumeGraph& graph, const ProbeSettings& s) {
+  const std::vector<ProbeResult> r = run_probes(
+      graph, "voxel.clipmap_info", filtered_resources(true),
+      {{glm::vec3(0.0f), glm::vec3(0, 1, 0)}, {glm::vec3(0.0f), glm::vec3(0.6f, 0.48f, 0.64f)}}, s);
+  std::vector<float> ratios;
+  for (const ProbeResult& p : r) ratios.push_back(p.irradiance.g / static_cast<float>(M_PI));
+  return ratios;
+}
+
+class ConeTraceThreeLevelsTest : public ConeTraceClipmapTest {
+ protected:
+  void SetUp() override {
+    ConeTraceClipmapTest::SetUp();
+    if (IsSkipped()) return;
+    fill_radiance(
+        data_,
+        [](glm::vec3 c) {
+          return glm::length(c) >= 1.0f ? glm::vec4(1.0f, 1.0f, 1.0f, 1.0f) : glm::vec4(0.0f);
+        },
+        3);
+    graph_ = std::make_unique<VolumeGraph>(filter_graph(kR, 3, true), &data_,
+                                           scene::make_builtin_scene("empty"));
+    graph_->render();
+  }
+  VolumeData data_;
+  std::unique_ptr<VolumeGraph> graph_;
+};
+
+// Cones cross from level to level and still return pi * L.
+TEST_F(ConeTraceThreeLevelsTest, UniformEmitterAcrossThreeLevels) {
   for (int n : {1, 6, 16}) {
     ProbeSettings s;
     s.diffuse_cones = n;
-    const std::vector<ProbeResult> r = run_probes(
-        graph, "voxel.clipmap_info", filtered_resources(true),
-        {{glm::vec3(0.0f), glm::vec3(0, 1, 0)}, {glm::vec3(0.0f), glm::vec3(0.6f, 0.48f, 0.64f)}},
-        s);
-    for (const ProbeResult& p : r) {
-      const float ratio = p.irradiance.g / static_cast<float>(M_PI);
+    for (float ratio : emitter_across_three_levels(*graph_, s)) {
       std::printf("3 levels, N=%2d: E/(pi L) = %.4f\n", n, ratio);
       EXPECT_NEAR(ratio, 1.0f, 0.05f) << "N = " << n;
     }
   }
 }
 
-// The same emitter with the most work per gather a bench sweeps: 32 cones of four lanes at a
-// quarter step, through the three levels. llvmpipe ends every loop of an invocation once all
-// of them together have run 65535 iterations; the tracer's per-sample searches over levels and
-// mips were loops, so such a gather lost its last cones there (a 128^3 clipmap was 16% darker
-// with 32 cones than with 16; docs/error-budget.md, twenty-third round). On any device this
-// must give pi * L like the light gathers above.
-TEST_F(ConeTraceClipmapTest, ManyNarrowStepsAcrossThreeLevelsKeepEveryCone) {
-  VolumeData data;
-  fill_radiance(
-      data,
-      [](glm::vec3 c) {
-        return glm::length(c) >= 1.0f ? glm::vec4(1.0f, 1.0f, 1.0f, 1.0f) : glm::vec4(0.0f);
-      },
-      3);
-  VolumeGraph graph(filter_graph(kR, 3, true), &data, scene::make_builtin_scene("empty"));
-  graph.render();
+// The same with the most work per gather a bench sweeps: 32 cones of four lanes at a quarter
+// step. llvmpipe ends every loop of an invocation once all of them together have run 65535
+// iterations; the tracer's per-sample searches over levels and mips were loops, so such a
+// gather lost its last cones there (a 128^3 clipmap was 16% darker with 32 cones than with
+// 16; docs/error-budget.md, twenty-third round). On any device this must give pi * L too.
+TEST_F(ConeTraceThreeLevelsTest, ManyNarrowStepsKeepEveryCone) {
   ProbeSettings s;
   s.diffuse_cones = 32;
   s.lanes = 4;
   s.step_factor = 0.25f;
-  const std::vector<ProbeResult> r = run_probes(
-      graph, "voxel.clipmap_info", filtered_resources(true),
-      {{glm::vec3(0.0f), glm::vec3(0, 1, 0)}, {glm::vec3(0.0f), glm::vec3(0.6f, 0.48f, 0.64f)}}, s);
-  for (const ProbeResult& p : r) {
-    const float ratio = p.irradiance.g / static_cast<float>(M_PI);
+  for (float ratio : emitter_across_three_levels(*graph_, s)) {
     std::printf("3 levels, 32 cones x 4 lanes, step 0.25: E/(pi L) = %.4f\n", ratio);
     EXPECT_NEAR(ratio, 1.0f, 0.05f);
   }

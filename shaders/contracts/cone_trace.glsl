@@ -565,19 +565,19 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
       if (lane_opacity[j] >= VCT_OPACITY_THRESHOLD) continue;
       vec3 q = st.p;
       vec3 d = cone.direction;
+      bool inside = true;
       if (spread) {
         // Same height as the axis's sample (lift included): the lanes share its level of detail.
         q = st.p + t * (lane_direction[j] - cone.direction);
         d = lane_direction[j];
-        if (voxel_finest_level(q, VCT_WINDOW_MARGIN) < 0) {
-          open = max(open, 1.0 - lane_opacity[j]);
-          continue;
-        }
-        any_inside = true;
+        inside = voxel_finest_level(q, VCT_WINDOW_MARGIN) >= 0;
+        any_inside = any_inside || inside;
       }
-      if (spread || !sampled) v = vct_sample_step(q, d, st.lod, st.step_length, ratio);
-      sampled = true;
-      vct_composite(v, ratio, falloff, lane_radiance[j], lane_opacity[j], lane_occlusion[j]);
+      if (inside) {
+        if (spread || !sampled) v = vct_sample_step(q, d, st.lod, st.step_length, ratio);
+        sampled = true;
+        vct_composite(v, ratio, falloff, lane_radiance[j], lane_opacity[j], lane_occlusion[j]);
+      }
       open = max(open, 1.0 - lane_opacity[j]);
     }
     if (!any_inside || open <= 1.0 - VCT_OPACITY_THRESHOLD) break;

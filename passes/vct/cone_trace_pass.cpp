@@ -1,7 +1,9 @@
 // vct.cone_trace (indirect diffuse + ambient occlusion) and vct.cone_trace_specular (one
 // glossy cone): cone tracing through the filtered volumes (shaders/contracts/cone_trace.glsl) per
 // G-buffer pixel, at full resolution or at half resolution followed by a depth- and
-// normal-aware upsample through the graph-provided scratch image `half_res`.
+// normal-aware upsample through the graph-provided scratch image `half_res`. The diffuse
+// gather's interleaved average (parameter `interleave`) is a dispatch of its own over an
+// image the pass keeps, so that its windows cross workgroups.
 
 #include <cmath>
 #include <memory>
@@ -35,6 +37,25 @@ struct TracePush {
   int32_t lanes;
   int32_t interleave;
 };
+
+struct InterleavePush {
+  uint32_t width;
+  uint32_t height;
+  int32_t interleave;
+};
+
+// Compute writes and reads before it finished before compute work after it (the pass's own
+// image between its dispatches, and against the last frame's reads).
+void compute_barrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier2 memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  memory.srcStageMask = memory.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+  memory.srcAccessMask = memory.dstAccessMask =
+      VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT;
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &memory;
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
 
 struct UpsamplePush {
   uint32_t width;
@@ -131,6 +152,20 @@ class ConeTracePass final : public graph::Pass {
                                                true, shadow_defines));
     }
 
+    // The interleaved average: from the pass's own image of per-pixel gathers to the result
+    // (full resolution) or to `half_res` (half).
+    interleave_.reset();
+    if (!specular_) {
+      std::vector<gpu::Binding> average = gbuffer;
+      average.push_back(result);
+      if (has_ao_ && !half_) average.push_back(storage_ao);
+      average.push_back({kBindingScratch, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
+      std::vector<gpu::ShaderDefine> average_defines = defines;
+      average_defines.push_back({"HALF", half_ ? "1" : "0"});
+      interleave_.emplace(graph::make_pass_compute(ctx, "vct/interleave.comp", average,
+                                                   sizeof(InterleavePush), false, average_defines));
+    }
+
     upsample_.reset();
     if (half_) {
       std::vector<gpu::Binding> upsample = gbuffer;
@@ -194,11 +229,18 @@ class ConeTracePass final : public graph::Pass {
     };
 
     const graph::BoundResource& traced = half_ ? ctx.resource("half_res") : result;
+    const VkExtent3D traced_extent = traced.info->extent;
+    const int interleave = specular_ ? 1 : ctx.integer("interleave");
+    if (interleave > 1) prepare_gathers(ctx, traced_extent);
     {
       gpu::DescriptorWriter writer;
       bind_gbuffer(writer);
       bind_volumes(writer);
-      writer.storage_image(kBindingResult, traced.view, traced.layout);
+      if (interleave > 1) {
+        writer.storage_image(kBindingResult, gathers_->view(), VK_IMAGE_LAYOUT_GENERAL);
+      } else {
+        writer.storage_image(kBindingResult, traced.view, traced.layout);
+      }
       if (has_ao_ && !half_) bind_storage(writer, kBindingAo, "ao");
       if (has_shadow_ && !half_) bind_storage(writer, kBindingShadow, "shadow");
       const VkExtent3D e = traced.info->extent;
@@ -219,6 +261,20 @@ class ConeTracePass final : public graph::Pass {
       graph::bind_scene_set(ctx, *shadow_);
       shadow_->push_constants(cmd, push_for(e));
       vkCmdDispatch(cmd, graph::workgroups(e.width, kTile), graph::workgroups(e.height, kTile), 1);
+    }
+    if (interleave > 1) {
+      compute_barrier(cmd);
+      gpu::DescriptorWriter writer;
+      bind_gbuffer(writer);
+      writer.storage_image(kBindingResult, traced.view, traced.layout);
+      if (has_ao_ && !half_) bind_storage(writer, kBindingAo, "ao");
+      writer.sampled_image(kBindingScratch, gathers_->view(), VK_IMAGE_LAYOUT_GENERAL, nearest);
+      interleave_->bind(cmd);
+      writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, interleave_->layout());
+      interleave_->push_constants(
+          cmd, InterleavePush{traced_extent.width, traced_extent.height, interleave});
+      vkCmdDispatch(cmd, graph::workgroups(traced_extent.width, kTile),
+                    graph::workgroups(traced_extent.height, kTile), 1);
     }
     if (!half_) return;
 
@@ -249,6 +305,28 @@ class ConeTracePass final : public graph::Pass {
   std::optional<gpu::ComputePipeline> trace_;
   std::optional<gpu::ComputePipeline> shadow_;
   std::optional<gpu::ComputePipeline> upsample_;
+  std::optional<gpu::ComputePipeline> interleave_;
+  // Each pixel's own gather before the interleaved average (rgba16f, the traced extent),
+  // kept in GENERAL layout.
+  std::optional<gpu::Image> gathers_;
+
+  // Makes the image of per-pixel gathers (again, for a new extent) and orders this frame's
+  // writes to it after the last frame's reads.
+  void prepare_gathers(graph::PassContext& ctx, VkExtent3D extent) {
+    VkCommandBuffer cmd = ctx.cmd();
+    if (gathers_ && gathers_->extent().width == extent.width &&
+        gathers_->extent().height == extent.height) {
+      compute_barrier(cmd);
+      return;
+    }
+    gpu::ImageDesc desc;
+    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    desc.extent = {extent.width, extent.height, 1};
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    desc.name = ctx.pass_name() + ".gathers";
+    gathers_.emplace(ctx.gpu(), desc);
+    gathers_->transition(cmd, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+  }
 };
 
 void validate_cone_trace(graph::PassCheck& check) {

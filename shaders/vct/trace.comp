@@ -5,9 +5,11 @@
 // volumes (contracts/cone_trace.glsl).
 //   diffuse (SPECULAR 0): outgoing radiance c_diff / pi * E with E from the diffuse cones;
 //                         ambient-occlusion visibility in `ao` (full res) or scratch alpha.
-//                         Neighbours are averaged (interleaved sets) and upsampled (half
-//                         resolution) as E / pi, and each pixel multiplies by its own c_diff,
-//                         so a texture's or an emitter's albedo is not blurred into the light.
+//                         Neighbours are averaged (interleaved sets, interleave.comp) and
+//                         upsampled (half resolution) as E / pi, and each pixel multiplies by
+//                         its own c_diff, so a texture's or an emitter's albedo is not blurred
+//                         into the light. With interleave > 1 this dispatch writes each pixel's
+//                         own gather (E / pi, a = AO; a < 0: nothing traced) for that average.
 //   specular (SPECULAR 1): one cone along the reflection, aperture from GGX roughness, times
 //                          Schlick's Fresnel at n.v.
 // HALF 1: writes the half-resolution scratch (rgb: E / pi or the specular result, a = AO) for
@@ -55,9 +57,8 @@ layout(set = 0, binding = 11) uniform sampler3D facing_normals;
 #define SHADOW_FORMAT r16f
 #endif
 
-// Workgroup edge (passes/vct/vct_pipeline.hpp kTile): the interleaved average works inside one.
-#define TILE 8
-layout(local_size_x = TILE, local_size_y = TILE) in;
+// Workgroup edge: passes/vct/vct_pipeline.hpp kTile.
+layout(local_size_x = 8, local_size_y = 8) in;
 
 #if !SHADOW_ONLY
 layout(set = 0, binding = 7, rgba16f) writeonly uniform image2D out_result;
@@ -155,13 +156,9 @@ void store_shadow(ivec2 pixel, float visibility) {
 // cone to (j + 1/2) / n^2 of its ring, j = (y mod n) n + (x mod n), so that every n x n window
 // holds each turn and each ring position once and the n^2 pairs fill the (turn, ring) square
 // one per n x n block of it; each pixel's result is the average of such a window over the
-// pixels of its own surface: n^2 cone sets at the cost of one. (Turns alone left every cone
+// pixels of its own surface (interleave.comp): n^2 cone sets at the cost of one. (Turns alone left every cone
 // at its ring's middle, and a few rings sample the polar angle coarsely: 4 and 6 cones were
 // 4 to 6 points darker than with both on the shared Cornell box.)
-shared vec4 interleave_value[TILE * TILE];     // rgb result, a = AO visibility
-shared vec4 interleave_position[TILE * TILE];  // world position, w = 1 where a gather ran
-shared vec3 interleave_normal[TILE * TILE];
-
 float interleave_rotation(ivec2 pixel) {
   int n = max(pc.interleave, 1);
   int index = (pixel.x % n) * n + (pixel.y % n);
@@ -174,37 +171,6 @@ float interleave_ring_position(ivec2 pixel) {
   return (float(index) + 0.5) / float(n * n);
 }
 
-// The surface-weighted average over the n x n window around this invocation, moved inside the
-// workgroup (and the image) so that it always holds n^2 pixels. Neighbours count fully on the
-// pixel's own plane and fade with their distance from it (relative to how far apart the two
-// pixels are) and with the angle between the normals, so light does not cross edges.
-vec4 interleave_resolve(vec4 own) {
-  int n = max(pc.interleave, 1);
-  ivec2 local = ivec2(gl_LocalInvocationID.xy);
-  ivec2 available = min(ivec2(TILE), ivec2(pc.size) - ivec2(gl_WorkGroupID.xy) * TILE);
-  ivec2 start = clamp(local - n / 2, ivec2(0), max(available - n, ivec2(0)));
-  ivec2 stop = min(start + n, available);
-  int self = local.y * TILE + local.x;
-  vec3 position = interleave_position[self].xyz;
-  vec3 normal = interleave_normal[self];
-  vec4 sum = own;
-  float weight_sum = 1.0;
-  for (int y = start.y; y < stop.y; ++y) {
-    for (int x = start.x; x < stop.x; ++x) {
-      int other = y * TILE + x;
-      if (other == self || interleave_position[other].w == 0.0) continue;
-      vec3 offset = interleave_position[other].xyz - position;
-      float off_plane = abs(dot(normal, offset)) / (0.1 * length(offset) + 1e-6);
-      float facing = max(dot(normal, interleave_normal[other]), 0.0);
-      facing *= facing;
-      facing *= facing;
-      float w = facing * facing / (1.0 + off_plane * off_plane);
-      sum += w * interleave_value[other];
-      weight_sum += w;
-    }
-  }
-  return sum / weight_sum;
-}
 #endif
 
 // This invocation's gather: rgb result and AO visibility in a; false where nothing was traced
@@ -284,20 +250,19 @@ bool gather(ivec2 pixel, out GbufferSample g, out vec4 value, out vec3 reflectan
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  bool inside = all(lessThan(uvec2(pixel), pc.size));
+  if (!all(lessThan(uvec2(pixel), pc.size))) return;
   GbufferSample g;
-  g.valid = false;
   vec4 value = vec4(0.0, 0.0, 0.0, 1.0);
   vec3 reflectance = vec3(1.0);
-  bool traced = inside && gather(pixel, g, value, reflectance);
+  bool traced = gather(pixel, g, value, reflectance);
 #if INTERLEAVED
-  // Every invocation of the workgroup reaches the barrier, inside the image or not.
-  int self = int(gl_LocalInvocationID.y) * TILE + int(gl_LocalInvocationID.x);
-  interleave_value[self] = value;
-  interleave_position[self] = vec4(traced ? g.position : vec3(0.0), traced ? 1.0 : 0.0);
-  interleave_normal[self] = traced ? g.normal : vec3(0.0);
-  barrier();
-  if (traced && pc.interleave > 1) value = interleave_resolve(value);
+  if (pc.interleave > 1) {
+    // This pixel's own cone set, for interleave.comp's average (E / pi, a = AO visibility;
+    // a < 0 where nothing was traced).
+    imageStore(out_result, pixel,
+               traced ? vec4(sanitize_radiance(value.rgb), value.a) : vec4(0.0, 0.0, 0.0, -1.0));
+    return;
+  }
 #endif
-  if (inside) store(pixel, value.rgb * reflectance, value.a);
+  store(pixel, value.rgb * reflectance, value.a);
 }

@@ -13,6 +13,7 @@
 #include "engine/gpu/context.hpp"
 #include "engine/gpu/image.hpp"
 #include "engine/gpu/pipeline.hpp"
+#include "engine/gpu/sync.hpp"
 #include "engine/graph/pass.hpp"
 #include "passes/contracts/gbuffer.hpp"
 #include "passes/contracts/voxel_clipmap.hpp"
@@ -43,19 +44,6 @@ struct InterleavePush {
   uint32_t height;
   int32_t interleave;
 };
-
-// Compute writes and reads before it finished before compute work after it (the pass's own
-// image between its dispatches, and against the last frame's reads).
-void compute_barrier(VkCommandBuffer cmd) {
-  VkMemoryBarrier2 memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  memory.srcStageMask = memory.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-  memory.srcAccessMask = memory.dstAccessMask =
-      VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT;
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.memoryBarrierCount = 1;
-  dependency.pMemoryBarriers = &memory;
-  vkCmdPipelineBarrier2(cmd, &dependency);
-}
 
 struct UpsamplePush {
   uint32_t width;
@@ -243,7 +231,7 @@ class ConeTracePass final : public graph::Pass {
       }
       if (has_ao_ && !half_) bind_storage(writer, kBindingAo, "ao");
       if (has_shadow_ && !half_) bind_storage(writer, kBindingShadow, "shadow");
-      const VkExtent3D e = traced.info->extent;
+      const VkExtent3D e = traced_extent;
       trace_->bind(cmd);
       writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, trace_->layout());
       if (has_shadow_ && !half_) graph::bind_scene_set(ctx, *trace_);
@@ -263,7 +251,7 @@ class ConeTracePass final : public graph::Pass {
       vkCmdDispatch(cmd, graph::workgroups(e.width, kTile), graph::workgroups(e.height, kTile), 1);
     }
     if (interleave > 1) {
-      compute_barrier(cmd);
+      order_gathers(cmd);
       gpu::DescriptorWriter writer;
       bind_gbuffer(writer);
       writer.storage_image(kBindingResult, traced.view, traced.layout);
@@ -316,7 +304,7 @@ class ConeTracePass final : public graph::Pass {
     VkCommandBuffer cmd = ctx.cmd();
     if (gathers_ && gathers_->extent().width == extent.width &&
         gathers_->extent().height == extent.height) {
-      compute_barrier(cmd);
+      order_gathers(cmd);
       return;
     }
     gpu::ImageDesc desc;
@@ -326,6 +314,15 @@ class ConeTracePass final : public graph::Pass {
     desc.name = ctx.pass_name() + ".gathers";
     gathers_.emplace(ctx.gpu(), desc);
     gathers_->transition(cmd, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+  }
+
+  // Compute work on the image of per-pixel gathers after the compute work before it (the
+  // average after the trace, and this frame's trace after the last frame's average).
+  void order_gathers(VkCommandBuffer cmd) {
+    const gpu::BarrierScope compute{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                    VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT};
+    gpu::image_barrier(cmd, gathers_->handle(), gathers_->range(), VK_IMAGE_LAYOUT_GENERAL,
+                       VK_IMAGE_LAYOUT_GENERAL, compute, compute);
   }
 };
 

@@ -65,33 +65,39 @@ void main() {
   }
   GbufferSample g = traced_surface(pixel);
   int n = max(pc.interleave, 1);
-  // An even window has no middle: it reaches one pixel further back at even coordinates and
-  // one further ahead at odd ones, so that it is centred on average. Then every pixel is in n
-  // windows along each axis, and the windows moved inside the image at its two sides weigh
-  // the pixels there alike (a window always half a pixel back took more from the left and top
-  // sides than from the others, and an image whose light falls off towards one side
-  // brightened or darkened with it).
-  ivec2 back = ivec2(n / 2) - ((n & 1) == 0 ? (pixel & 1) : ivec2(0));
-  ivec2 start = clamp(pixel - back, ivec2(0), max(size - n, ivec2(0)));
-  ivec2 stop = min(start + n, size);
+  // An odd window is centred on the pixel. An even one has no middle: it spans n + 1 pixels
+  // with its first and last rows and columns at half weight, which is centred and still weighs
+  // every turn alike (those rows and columns hold the same turns). Moving an n x n window
+  // half a pixel back took more from the image's left and top sides than from the others (an
+  // image whose light falls off towards one side brightened or darkened with it); moving it
+  // back at even coordinates and ahead at odd ones gave each 2 x 2 block of pixels one window,
+  // a 2-pixel pattern over the whole indirect image.
+  bool even = n > 1 && (n & 1) == 0;
+  int span = even ? n + 1 : n;
+  ivec2 start = clamp(pixel - ivec2(n / 2), ivec2(0), max(size - span, ivec2(0)));
+  ivec2 stop = min(start + span, size);
   // Neighbours count fully on the pixel's own plane and fade with their distance from it
   // (relative to how far apart the two pixels are) and with the angle between the normals, so
   // light does not cross edges.
-  vec4 sum = own;
-  float weight_sum = 1.0;
+  vec4 sum = vec4(0.0);
+  float weight_sum = 0.0;
   for (int y = start.y; y < stop.y; ++y) {
+    float wy = even && (y == start.y || y == start.y + n) ? 0.5 : 1.0;
     for (int x = start.x; x < stop.x; ++x) {
+      float wx = even && (x == start.x || x == start.x + n) ? 0.5 : 1.0;
       ivec2 q = ivec2(x, y);
-      if (q == pixel) continue;
-      vec4 value = texelFetch(traced, q, 0);
+      vec4 value = q == pixel ? own : texelFetch(traced, q, 0);
       if (!(value.a >= 0.0)) continue;
-      GbufferSample t = traced_surface(q);
-      vec3 offset = t.position - g.position;
-      float off_plane = abs(dot(g.normal, offset)) / (0.1 * length(offset) + 1e-6);
-      float facing = max(dot(g.normal, t.normal), 0.0);
-      facing *= facing;
-      facing *= facing;
-      float w = facing * facing / (1.0 + off_plane * off_plane);
+      float w = wx * wy;
+      if (q != pixel) {
+        GbufferSample t = traced_surface(q);
+        vec3 offset = t.position - g.position;
+        float off_plane = abs(dot(g.normal, offset)) / (0.1 * length(offset) + 1e-6);
+        float facing = max(dot(g.normal, t.normal), 0.0);
+        facing *= facing;
+        facing *= facing;
+        w *= facing * facing / (1.0 + off_plane * off_plane);
+      }
       sum += w * value;
       weight_sum += w;
     }

@@ -292,33 +292,44 @@ TEST_F(VctGraphTest, HalfResolutionMatchesFullResolution) {
   EXPECT_LT(relative, 0.15);
 }
 
-// The interleaved average runs over the whole image, not inside each 8 x 8 workgroup: there the
-// windows on either side of a workgroup's edge were disjoint, and the indirect light jumped at
-// every eighth pixel. Steps over two pixels (windows of neighbouring pixels can coincide) that
-// straddle a workgroup's edge against those inside one, on a plane of smooth light: 1.70 times
-// as large here with the average inside workgroups, 1.01 now.
-TEST_F(VctGraphTest, InterleavedAverageLeavesNoWorkgroupSeams) {
+// The built-in Cornell box's back wall above the tall block and under the ceiling (z = 0.5592),
+// a plane of smooth light, in the indirect image of the dense vct graph at 128 x 128.
+struct BackWallIndirect {
+  RenderedImage indirect;
+  glm::ivec2 lo, hi;  // the region's pixel bounds
+  double luminance(int x, int y) const {
+    const glm::vec4 v = indirect.at(uint32_t(x), uint32_t(y));
+    return 0.2126 * v.r + 0.7152 * v.g + 0.0722 * v.b;
+  }
+};
+
+BackWallIndirect render_back_wall_indirect() {
   RenderSetup setup = dense_vct_setup();
   setup.scene = "cornell";
   setup.width = setup.height = 128;
   RenderHarness harness(setup);
   harness.render();
-  const RenderedImage indirect = harness.output("indirect");
-  // The back wall above the tall block and under the ceiling (z = 0.5592).
-  const glm::ivec2 a = pixel_of(harness, indirect, {0.06f, 0.36f, 0.5592f});
-  const glm::ivec2 b = pixel_of(harness, indirect, {0.50f, 0.50f, 0.5592f});
-  const glm::ivec2 lo = glm::min(a, b), hi = glm::max(a, b);
-  ASSERT_GT(hi.x - lo.x, 24);
-  ASSERT_GT(hi.y - lo.y, 8);
-  auto luminance = [&](int x, int y) {
-    const glm::vec4 v = indirect.at(uint32_t(x), uint32_t(y));
-    return 0.2126 * v.r + 0.7152 * v.g + 0.0722 * v.b;
-  };
+  BackWallIndirect wall{harness.output("indirect"), {}, {}};
+  const glm::ivec2 a = pixel_of(harness, wall.indirect, {0.06f, 0.36f, 0.5592f});
+  const glm::ivec2 b = pixel_of(harness, wall.indirect, {0.50f, 0.50f, 0.5592f});
+  wall.lo = glm::min(a, b);
+  wall.hi = glm::max(a, b);
+  return wall;
+}
+
+// The interleaved average runs over the whole image, not inside each 8 x 8 workgroup: there the
+// windows on either side of a workgroup's edge were disjoint, and the indirect light jumped at
+// every eighth pixel. Steps over two pixels that straddle a workgroup's edge against those
+// inside one: 1.70 times as large with the average inside workgroups, 1.01 now.
+TEST_F(VctGraphTest, InterleavedAverageLeavesNoWorkgroupSeams) {
+  const BackWallIndirect wall = render_back_wall_indirect();
+  ASSERT_GT(wall.hi.x - wall.lo.x, 24);
+  ASSERT_GT(wall.hi.y - wall.lo.y, 8);
   double across = 0.0, inside = 0.0;
   int steps_across = 0, steps_inside = 0;
-  for (int y = lo.y; y <= hi.y; ++y) {
-    for (int x = lo.x; x + 2 <= hi.x; ++x) {
-      const double step = std::abs(luminance(x + 2, y) - luminance(x, y));
+  for (int y = wall.lo.y; y <= wall.hi.y; ++y) {
+    for (int x = wall.lo.x; x + 2 <= wall.hi.x; ++x) {
+      const double step = std::abs(wall.luminance(x + 2, y) - wall.luminance(x, y));
       if (x % 8 == 6) {  // x + 2 is the next workgroup's first column
         across += step;
         ++steps_across;
@@ -335,6 +346,42 @@ TEST_F(VctGraphTest, InterleavedAverageLeavesNoWorkgroupSeams) {
       across, inside, across / std::max(inside, 1e-12));
   EXPECT_GT(inside, 0.0);
   EXPECT_LT(across, 1.5 * inside);
+}
+
+// Every pixel's window is centred on it and slides by one pixel from one pixel to the next.
+// An even window that reached back at even coordinates and ahead at odd ones gave each 2 x 2
+// block one window, so one value on a plane: the indirect light at half the resolution. Mean
+// one-pixel steps from even to odd coordinates against those from odd to even, along x and y:
+// the latter were 0 with those windows, the ratio is 1.01 and 0.94 now.
+TEST_F(VctGraphTest, InterleavedAverageLeavesNoTwoPixelPattern) {
+  const BackWallIndirect wall = render_back_wall_indirect();
+  ASSERT_GT(wall.hi.x - wall.lo.x, 24);
+  ASSERT_GT(wall.hi.y - wall.lo.y, 8);
+  for (int axis = 0; axis < 2; ++axis) {
+    double from_even = 0.0, from_odd = 0.0;
+    int count_even = 0, count_odd = 0;
+    for (int y = wall.lo.y; y + (axis == 1 ? 1 : 0) <= wall.hi.y; ++y) {
+      for (int x = wall.lo.x; x + (axis == 0 ? 1 : 0) <= wall.hi.x; ++x) {
+        const int next_x = axis == 0 ? x + 1 : x, next_y = axis == 1 ? y + 1 : y;
+        const double step = std::abs(wall.luminance(next_x, next_y) - wall.luminance(x, y));
+        if ((axis == 0 ? x : y) % 2 == 0) {
+          from_even += step;
+          ++count_even;
+        } else {
+          from_odd += step;
+          ++count_odd;
+        }
+      }
+    }
+    from_even /= count_even;
+    from_odd /= count_odd;
+    const double ratio = from_even / std::max(from_odd, 1e-12);
+    std::printf("back wall, %c: mean one-pixel step from even %.5f, from odd %.5f (ratio %.2f)\n",
+                axis == 0 ? 'x' : 'y', from_even, from_odd, ratio);
+    EXPECT_GT(from_odd, 0.0);
+    EXPECT_LT(ratio, 1.4) << (axis == 0 ? "x" : "y");
+    EXPECT_GT(ratio, 1.0 / 1.4) << (axis == 0 ? "x" : "y");
+  }
 }
 
 }  // namespace

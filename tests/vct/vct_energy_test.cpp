@@ -222,10 +222,11 @@ double floor_under_an_emitter_mean_indirect(uint32_t size, const EmitterPlacemen
 
 // End to end through the voxelization of an emitter, its injection as emission, the filter and
 // the gather: the near field of a small emitter. Measured with the default 6 cones: 1.35x the
-// closed form at 32^3 and 1.18x at 64^3 (1.23x and 1.13x at the eleventh round). It was 1.63x and 1.45x while the gather interpolated
-// optical depth across a cone's travel too, which made a texel half covered by the emitter
-// nearly opaque and every emitter a voxel wider on each side (docs/error-budget.md, eleventh
-// round). Held from both sides so that the excess cannot grow unseen; the target is 10%.
+// closed form at 32^3 and 1.18x at 64^3 (1.23x and 1.13x at the eleventh round). It was 1.63x
+// and 1.45x while the gather interpolated optical depth across a cone's travel too, which made a
+// texel half covered by the emitter nearly opaque and every emitter a voxel wider on each side
+// (docs/error-budget.md, eleventh round). Held from both sides so that the excess cannot grow
+// unseen; the target is 10%.
 TEST_F(GpuTest, FloorUnderAnEmittingSquare) {
   const double expected = floor_under_an_emitter_mean_indirect(kEnergyBoundImageSize);
   for (uint32_t resolution : {32u, 64u}) {

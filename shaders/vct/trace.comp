@@ -156,9 +156,9 @@ void store_shadow(ivec2 pixel, float visibility) {
 // cone to (j + 1/2) / n^2 of its ring, j = (y mod n) n + (x mod n), so that every n x n window
 // holds each turn and each ring position once and the n^2 pairs fill the (turn, ring) square
 // one per n x n block of it; each pixel's result is the average of such a window over the
-// pixels of its own surface (interleave.comp): n^2 cone sets at the cost of one. (Turns alone left every cone
-// at its ring's middle, and a few rings sample the polar angle coarsely: 4 and 6 cones were
-// 4 to 6 points darker than with both on the shared Cornell box.)
+// pixels of its own surface (interleave.comp): n^2 cone sets at the cost of one. (Turns alone
+// left every cone at its ring's middle, and a few rings sample the polar angle coarsely: 4 and
+// 6 cones were 4 to 6 points darker than with both on the shared Cornell box.)
 float interleave_rotation(ivec2 pixel) {
   int n = max(pc.interleave, 1);
   int index = (pixel.x % n) * n + (pixel.y % n);

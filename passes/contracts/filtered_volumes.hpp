@@ -25,9 +25,10 @@ gpu::ShaderDefine unwrapped_windows_define(uint32_t clipmap_levels);
 
 // cone_trace.glsl's refinement where a cone meets a surface (vct_sample_step): the define for
 // `levels` levels of detail finer (0: off), and the pass parameter "refine" that sets it, the
-// same for every pass that traces cones.
+// same for every pass that traces cones but for its default: the gathers refine two levels, the
+// voxel bounces of dvs one (docs/error-budget.md, twenty-seventh round).
 gpu::ShaderDefine refine_levels_define(int levels);
-graph::ParamSpec refine_levels_param();
+graph::ParamSpec refine_levels_param(int default_levels);
 
 // The longest cone, the pass parameter "max_distance" of every pass that traces cones, in the
 // scene's units: 0 (the default) is no limit, cones end where they are opaque or leave the

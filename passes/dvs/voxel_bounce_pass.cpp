@@ -240,7 +240,7 @@ void register_voxel_bounce(graph::Registry& registry) {
        {},
        "distance skipped at the start of each cone, in voxels (self-occlusion)",
        true},
-      contracts::refine_levels_param(),
+      contracts::refine_levels_param(1),
   };
   graph::set_size_rule(info, "radiance", graph::same_layout_as("direct"));
   graph::set_size_rule(info, "light_shares", graph::same_layout_as("direct"));

@@ -425,7 +425,7 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
                       "voxels (0: occlusion at any distance counts fully)",
                       true});
   }
-  params.push_back(contracts::refine_levels_param());
+  params.push_back(contracts::refine_levels_param(2));
   params.push_back({"lanes",
                     graph::ParamType::Int,
                     4.0,

@@ -581,9 +581,11 @@ void expect_lit_box_matches_radiosity(const VoxelGiSetup& gi, const BoxRadiosity
 }
 
 std::vector<EnergyBoundScene> energy_bound_scenes() {
-  // Cornell box: measured 0.92 to 0.95 for vct (32^3 and 64^3, 4 to 16 cones, refine 0 to 3).
-  // Thin wall: measured 1.14 to 1.27 for vct (1.43 with refine 0; 1.41 to 1.51 in the tenth
-  // round, 1.46 to 1.83 before voxels sent each side the share of their surfaces facing it).
+  // Cornell box: measured 0.94 to 0.97 for vct (32^3 and 64^3, 4 to 16 cones, refine 0 to 3).
+  // Thin wall: measured 1.15 to 1.25 for vct with the default refine 2 (1.34 with refine 1,
+  // 1.48 with refine 0: a sample's texel behind the lit face no longer dilutes its light,
+  // docs/error-budget.md, twenty-seventh round; 1.41 to 1.51 in the tenth round, 1.46 to 1.83
+  // before voxels sent each side the share of their surfaces facing it).
   // The two faces of the 1 mm wall straddle a voxel face and fall in different voxels, so the
   // light shares leave it where it was; the excess left has another cause, not yet found
   // (docs/error-budget.md, "What is left").

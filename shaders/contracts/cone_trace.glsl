@@ -216,7 +216,9 @@ vec4 vct_fetch_directional(vec3 p, vec3 dir, int level, int mip) {
   }
 #else
   for (int k = 0; k < 3; ++k) {
-    if (w[k] > 0.0) sum += w[k] * vct_fetch_along(vct_volumes[0], p, level, mip, k, dir[k] >= 0.0);
+    if (w[k] > 0.0) {
+      sum += w[k] * vct_fetch_along(vct_volumes[0], p, level, mip, k, dir[k] >= 0.0);
+    }
   }
 #endif
   return sum;
@@ -324,7 +326,8 @@ vec4 vct_sample(vec3 p, vec3 dir, float lod) {
 
 // Finer voxels where a cone meets a surface: how many levels of detail finer a step is marched
 // again where its sample holds a surface (vct_sample_step; 0: never; the passes' parameter
-// "refine" sets it, 1 by default), and the opacity over the step that counts as holding one.
+// "refine" sets it: 2 by default for the gathers, 1 for dvs's voxel bounces), and the opacity
+// over the step that counts as holding one.
 #ifndef VCT_REFINE_LEVELS
 #define VCT_REFINE_LEVELS 1
 #endif

@@ -123,6 +123,24 @@ TEST_F(VoxgiCli, GraphCheckCompilesEveryVariantAndExplainNamesTheChosenOne) {
                                    "sized by pass 'filter'", "sized by pass 'shadows'"}));
 }
 
+// dvs.json's one cone count reaches its voxel bounces and its final gather alike: more gather
+// cones alone leave the voxel bounces' error where it is (docs/error-budget.md, twenty-eighth
+// round).
+TEST_F(VoxgiCli, DvsConesSetTheVoxelBouncesAndTheFinalGather) {
+  const ProcessResult r = voxgi(
+      {"graph", "explain", "graphs/dvs.json", "--set", "dvs.cones=9", "--set", "dvs.bounces=2"});
+  ASSERT_TRUE(exited_with(r, 0));
+  EXPECT_TRUE(stdout_has(
+      r, {"bounce1 (dvs.voxel_bounce)", "bounce2 (dvs.voxel_bounce)", "gather (vct.cone_trace)"}));
+  size_t count = 0;
+  for (size_t at = r.out.find("param diffuse_cones = "); at != std::string::npos;
+       at = r.out.find("param diffuse_cones = ", at + 1)) {
+    EXPECT_EQ(r.out.compare(at, 24, "param diffuse_cones = 9\n"), 0) << r.out.substr(at, 40);
+    ++count;
+  }
+  EXPECT_EQ(count, 3u) << r.out;  // two voxel bounces and the final gather
+}
+
 TEST_F(VoxgiCli, UnknownVariantListsTheGraphsVariants) {
   const ProcessResult r = render({"--graph", "graphs/vct.json", "--variant", "hlaf"});
   EXPECT_TRUE(exited_with(r, kError));

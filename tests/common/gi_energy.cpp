@@ -363,8 +363,7 @@ VoxelGiSetup dvs_gi_setup(uint32_t voxel_resolution, int bounces, int diffuse_co
   gi.label = "dvs " + std::to_string(voxel_resolution) + "^3, " + std::to_string(bounces) +
              " voxel bounces";
   if (diffuse_cones > 0) {
-    gi.overrides["gather.diffuse_cones"] = std::to_string(diffuse_cones);
-    gi.overrides["dvs.bounce_cones"] = std::to_string(diffuse_cones);
+    gi.overrides["dvs.cones"] = std::to_string(diffuse_cones);
     gi.label += ", " + std::to_string(diffuse_cones) + " cones";
   }
   return gi;

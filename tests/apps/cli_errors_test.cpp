@@ -132,10 +132,11 @@ TEST_F(VoxgiCli, DvsConesSetTheVoxelBouncesAndTheFinalGather) {
   ASSERT_TRUE(exited_with(r, 0));
   EXPECT_TRUE(stdout_has(
       r, {"bounce1 (dvs.voxel_bounce)", "bounce2 (dvs.voxel_bounce)", "gather (vct.cone_trace)"}));
+  const std::string any = "param diffuse_cones = ";
+  const std::string nine = any + "9\n";
   size_t count = 0;
-  for (size_t at = r.out.find("param diffuse_cones = "); at != std::string::npos;
-       at = r.out.find("param diffuse_cones = ", at + 1)) {
-    EXPECT_EQ(r.out.compare(at, 24, "param diffuse_cones = 9\n"), 0) << r.out.substr(at, 40);
+  for (size_t at = r.out.find(any); at != std::string::npos; at = r.out.find(any, at + 1)) {
+    EXPECT_EQ(r.out.compare(at, nine.size(), nine), 0) << r.out.substr(at, 40);
     ++count;
   }
   EXPECT_EQ(count, 3u) << r.out;  // two voxel bounces and the final gather

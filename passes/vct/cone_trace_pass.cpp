@@ -428,13 +428,15 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
   params.push_back(contracts::refine_levels_param(2));
   params.push_back({"lanes",
                     graph::ParamType::Int,
-                    4.0,
+                    8.0,
                     1.0,
-                    4.0,
+                    8.0,
                     {},
                     "lanes of a cone capped near its receiver, spread across its width and "
-                    "composited each on its own (docs/vct.md); 1 traces the axis only, about 4.7x "
-                    "cheaper on lavapipe, but small bright surfaces are hit or missed as blotches",
+                    "composited each on its own (docs/vct.md): an even number from 6 up makes two "
+                    "rows, one under and one over the axis's elevation, fewer make one row at it; "
+                    "1 traces the axis only, several times cheaper on lavapipe, but small bright "
+                    "surfaces are hit or missed as blotches",
                     true});
   params.push_back({"step_factor",
                     graph::ParamType::Float,

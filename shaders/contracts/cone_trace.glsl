@@ -78,7 +78,7 @@
 #define VCT_MAX_STEPS 512
 // Most lanes of a capped cone (vct_trace_cone, VctTraceSettings.lanes): thin sub-cones across
 // its width.
-#define VCT_MAX_LANES 4
+#define VCT_MAX_LANES 8
 // A cone stops once it is this opaque: the rest would add less than 1% of its radiance.
 #define VCT_OPACITY_THRESHOLD 0.99
 // How far inside a level's window (in its voxels) a sample must lie: there the trilinear
@@ -432,6 +432,7 @@ struct VctConeFrame {
   float base_size;    // level-0 voxel edge
   bool has_receiver;  // the cone leaves a surface
   float rise;         // height gained over the receiver per unit of t
+  float lowest_rise;  // the same for the cone's lowest lane, whose height caps the level of detail
 };
 
 VctConeFrame vct_cone_frame(VctCone cone) {
@@ -440,17 +441,29 @@ VctConeFrame vct_cone_frame(VctCone cone) {
   f.base_size = voxel_size(0);
   f.has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
   f.rise = f.has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
+  f.lowest_rise = f.rise;
   return f;
 }
 
 // Where a cone samples at distance t and how far that sample reaches (see vct_trace_cone).
 struct VctConeStep {
-  vec3 p;             // sample point, lifted off the receiver's plane where needed
-  float diameter;     // the cone's width at t
-  float lod;          // level of detail sampled
-  float voxel;        // edge of the voxels sampled
-  float step_length;  // the segment [t, t + step_length] the sample stands for
+  vec3 p;              // sample point, lifted off the receiver's plane where needed
+  float diameter;      // the cone's width at t
+  float lod;           // level of detail sampled
+  float voxel;         // edge of the voxels sampled
+  float coarse_voxel;  // edge of the coarser of the two levels interpolated
+  float step_length;   // the segment [t, t + step_length] the sample stands for
 };
+
+// A sample point `height` above the receiver's plane, lifted where the step's coarser level
+// cannot separate it from the plane (see vct_trace_cone).
+vec3 vct_lift_off_receiver(VctCone cone, VctConeStep st, vec3 p, float height) {
+  if (st.coarse_voxel <= (2.0 / 3.0) * height) return p;
+  // Too close to the plane for the finest level present: sample straight above, where the
+  // receiver's voxels no longer weigh in. Walls standing on the plane reach up there too,
+  // so the cone still stops at them (skipping such samples let cones escape through them).
+  return p + cone.receiver_normal * (1.5 * st.coarse_voxel - height);
+}
 
 // False once the cone's axis has left the volume. The step is filled in either way: the lanes
 // beside the axis may still be inside (vct_trace_cone).
@@ -463,19 +476,16 @@ bool vct_cone_step(VctCone cone, VctConeFrame f, VctTraceSettings s, float t,
   st.diameter = max(2.0 * t * f.tan_half, base_size);
   float lod = log2(st.diameter / base_size);
   float height = cone.receiver_height + t * f.rise;
-  if (has_receiver) lod = min(lod, log2(max(height, 1e-6 * base_size) / (3.0 * base_size)));
+  // Capped for the lowest lane, the one nearest the receiver: the lanes share the level.
+  float lowest = cone.receiver_height + t * f.lowest_rise;
+  if (has_receiver) lod = min(lod, log2(max(lowest, 1e-6 * base_size) / (3.0 * base_size)));
   if (finest >= 0) lod = min(lod, vct_window_lod_limit(st.p));
   st.lod = clamp(lod, float(max(finest, 0)), vct_max_lod());
   st.voxel = base_size * exp2(st.lod);
   // Each sample stands for the segment [t, t + step]; the last one ends at max_distance.
   st.step_length = min(max(s.step_factor * st.voxel, 1e-2 * base_size), s.max_distance - t);
-  float coarse_voxel = base_size * exp2(ceil(st.lod));
-  if (has_receiver && coarse_voxel > (2.0 / 3.0) * height) {
-    // Too close to the plane for the finest level present: sample straight above, where the
-    // receiver's voxels no longer weigh in. Walls standing on the plane reach up there too,
-    // so the cone still stops at them (skipping such samples let cones escape through them).
-    st.p += cone.receiver_normal * (1.5 * coarse_voxel - height);
-  }
+  st.coarse_voxel = base_size * exp2(ceil(st.lod));
+  if (has_receiver) st.p = vct_lift_off_receiver(cone, st, st.p, height);
   return finest >= 0;
 }
 
@@ -515,17 +525,27 @@ VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
   return result;
 }
 
-// The lanes' directions: lane j of `lanes` is the axis turned about the receiver's normal by
-// (2 (j + 1/2) / lanes - 1) times the cone's azimuthal half-width at the axis's elevation, so
-// every lane keeps the axis's angle to the receiver. (Lanes offset along a straight tangent,
-// axis + k side, leaned towards the horizon by up to atan(0.75 tan(half angle)): the wider the
-// cone, the more of its weight moved to low directions, which made the Cornell boxes 5 to 15
-// points darker; docs/error-budget.md, fifth round.)
-void vct_lane_directions(VctCone cone, VctConeFrame frame, int lanes,
+// The lanes' directions. A lane is the axis turned about the receiver's normal, so that it keeps
+// its elevation: lanes offset along a straight tangent, axis + k side, leaned towards the horizon
+// by up to atan(0.75 tan(half angle)), so the wider the cone, the more of its weight moved to low
+// directions, which made the Cornell boxes 5 to 15 points darker (docs/error-budget.md, fifth
+// round). With an even number of 6 or more, the lanes form two rows of lanes / 2, a quarter of
+// the cone's half angle below and above the axis's elevation (the lower row kept above 3/4 of
+// it); otherwise one row at the axis's elevation. In a row, lane k of n is turned by
+// (2 (k + 1/2) / n - 1) times the cone's azimuthal half-width at the row's elevation. One row
+// reads a capped cone at one elevation only: with 4 cones (up to 49 degrees of half angle) a
+// surface whose grazing cones see lit walls at their axes' elevation and darkness just above
+// read too bright, the more so the finer the voxels, and two rows of 4 lanes are what made
+// every cone count fall with resolution (docs/error-budget.md, twenty-ninth round; two rows of 2
+// lost the azimuths that narrow cones need). The lowest row caps the level of detail of all
+// (vct_cone_step): each lane capped for its own height let the upper ones read coarser voxels,
+// whose light reached further beside an emitter's edge.
+void vct_lane_directions(VctCone cone, inout VctConeFrame frame, int lanes,
                          out vec3 directions[VCT_MAX_LANES]) {
   float rise = frame.rise;
   vec3 along = cone.direction - cone.receiver_normal * rise;  // horizontal part
   float horizontal = length(along);
+  vec3 heading = along / max(horizontal, 1e-6);
   vec3 side = cross(cone.direction, cone.receiver_normal);
   float side_len = length(side);
   side = side_len > 1e-6 ? side / side_len : vec3(0.0);
@@ -534,9 +554,20 @@ void vct_lane_directions(VctCone cone, VctConeFrame frame, int lanes,
   float cos_half = inversesqrt(1.0 + frame.tan_half * frame.tan_half);
   float cos_phi_max = (cos_half - rise * rise) / max(horizontal * horizontal, 1e-6);
   float phi_max = acos(clamp(cos_phi_max, -1.0, 1.0));
+  float elevation = asin(clamp(rise, -1.0, 1.0));
+  int rows = lanes >= 6 && lanes % 2 == 0 ? 2 : 1;
+  int per_row = lanes / rows;
+  float quarter = rows == 2 ? 0.25 * atan(frame.tan_half) : 0.0;
   for (int j = 0; j < lanes; ++j) {
-    float phi = (2.0 * (float(j) + 0.5) / float(lanes) - 1.0) * phi_max;
-    directions[j] = along * cos(phi) + side * (horizontal * sin(phi)) + cone.receiver_normal * rise;
+    int k = j / rows;
+    float phi = (2.0 * (float(k) + 0.5) / float(per_row) - 1.0) * phi_max;
+    float e = elevation;
+    if (rows == 2) {
+      e = j % 2 == 0 ? max(elevation - quarter, 0.75 * elevation)
+                     : min(elevation + quarter, 0.5 * VCT_PI);
+    }
+    directions[j] = (heading * cos(phi) + side * sin(phi)) * cos(e) + cone.receiver_normal * sin(e);
+    frame.lowest_rise = min(frame.lowest_rise, sin(e));
   }
 }
 
@@ -565,10 +596,10 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     // A capped cone's voxels are narrower than the cone: one sample on its axis would be a
     // thin probe carrying the whole cone's weight, which hits or misses a small bright
     // surface (an area light) and paints it as blotches that move with the cone layout. So
-    // the cone is a fan of `lanes` thin lanes spread across its width at the axis's elevation
-    // (vct_lane_directions), each composited on its own, so that a lane stops at the wall it
-    // meets and the lanes beside it go on. Where the voxels are as wide as the cone the lanes
-    // coincide and share the axis's sample. Each lane ends where it leaves the volume, not
+    // the cone is a fan of `lanes` thin lanes spread across its width (vct_lane_directions),
+    // each composited on its own, so that a lane stops at the wall it meets and the lanes
+    // beside it go on. Where the voxels are as wide as the cone the lanes coincide and share
+    // the axis's sample. Each lane ends where it leaves the volume, not
     // where the axis does (lanes that met their wall after the axis had left were cut short).
     bool spread = st.diameter > 1.5 * st.voxel;
     if (!spread && !axis_inside) break;
@@ -588,9 +619,10 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
       vec3 d = cone.direction;
       bool inside = true;
       if (spread) {
-        // Same height as the axis's sample (lift included): the lanes share its level of detail.
-        q = st.p + t * (lane_direction[j] - cone.direction);
+        // The shared level of detail, each lane lifted for its own height over the receiver.
         d = lane_direction[j];
+        float height = cone.receiver_height + t * dot(d, cone.receiver_normal);
+        q = vct_lift_off_receiver(cone, st, cone.origin + t * d, height);
         inside = voxel_finest_level(q, VCT_WINDOW_MARGIN) >= 0;
         any_inside = any_inside || inside;
       }

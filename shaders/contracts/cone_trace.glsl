@@ -532,7 +532,7 @@ VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
 // round). With an even number of 6 or more, the lanes form two rows of lanes / 2, a quarter of
 // the cone's half angle below and above the axis's elevation (the lower row kept above 3/4 of
 // it); otherwise one row at the axis's elevation. In a row, lane k of n is turned by
-// (2 (k + 1/2) / n - 1) times the cone's azimuthal half-width at the row's elevation. One row
+// (2 (k + 1/2) / n - 1) times the cone's azimuthal half-width at the axis's elevation. One row
 // reads a capped cone at one elevation only: with 4 cones (up to 49 degrees of half angle) a
 // surface whose grazing cones see lit walls at their axes' elevation and darkness just above
 // read too bright, the more so the finer the voxels, and two rows of 4 lanes are what made

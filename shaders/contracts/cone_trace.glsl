@@ -89,6 +89,15 @@
 #define VCT_WINDOW_MARGIN 0.5
 // Most mips of a volume: log2 of the largest voxel resolution (common.voxelize allows 1024).
 #define VCT_MAX_MIP 10
+// The level a cone of diameter D reads: mip m's voxels (edge V) are box filters of width V read
+// through the trilinear tent of half width V, a kernel of standard deviation V / 2 along each
+// axis; the cone's cross-section, a disc of diameter D, has D / 4. So the level whose kernel is
+// as wide as the cone is V = D / 2, one level finer than V = D. (Read at V = D, as cone tracers
+// usually do, a sample reached a cone radius beyond the cone: an area light behind the Cornell
+// boxes' blocks lit the floor at their base through cones passing beside them, at every voxel
+// resolution and cone count; docs/error-budget.md, thirtieth round.) Lanes (vct_trace_cone)
+// share the cross-section and are read half a level finer again per doubling of their number.
+#define VCT_FOOTPRINT_LOD_BIAS 1.0
 // Widest cone aperture (half angle 60 degrees): wider cones jump to the coarsest mips at once.
 #define VCT_MAX_TAN_HALF_ANGLE 1.7320508
 
@@ -433,6 +442,7 @@ struct VctConeFrame {
   bool has_receiver;  // the cone leaves a surface
   float rise;         // height gained over the receiver per unit of t
   float lowest_rise;  // the same for the cone's lowest lane, whose height caps the level of detail
+  float lod_bias;     // levels finer than the cone's diameter its samples are read at
 };
 
 VctConeFrame vct_cone_frame(VctCone cone) {
@@ -442,6 +452,7 @@ VctConeFrame vct_cone_frame(VctCone cone) {
   f.has_receiver = dot(cone.receiver_normal, cone.receiver_normal) > 0.25;
   f.rise = f.has_receiver ? dot(cone.direction, cone.receiver_normal) : 0.0;
   f.lowest_rise = f.rise;
+  f.lod_bias = VCT_FOOTPRINT_LOD_BIAS;
   return f;
 }
 
@@ -474,7 +485,7 @@ bool vct_cone_step(VctCone cone, VctConeFrame f, VctTraceSettings s, float t,
   st.p = cone.origin + t * cone.direction;
   int finest = voxel_finest_level(st.p, VCT_WINDOW_MARGIN);
   st.diameter = max(2.0 * t * f.tan_half, base_size);
-  float lod = log2(st.diameter / base_size);
+  float lod = log2(st.diameter / base_size) - f.lod_bias;
   float height = cone.receiver_height + t * f.rise;
   // Capped for the lowest lane, the one nearest the receiver: the lanes share the level.
   float lowest = cone.receiver_height + t * f.lowest_rise;
@@ -579,6 +590,8 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
   float base_size = frame.base_size;
   vec3 lane_direction[VCT_MAX_LANES];
   vct_lane_directions(cone, frame, lanes, lane_direction);
+  // Each lane stands for 1 / lanes of the cross-section: a disc sqrt(lanes) times narrower.
+  frame.lod_bias += 0.5 * log2(float(lanes));
   // The cone's lanes (see below): radiance, opacity and occlusion of each.
   vec3 lane_radiance[VCT_MAX_LANES];
   float lane_opacity[VCT_MAX_LANES];
@@ -593,13 +606,14 @@ VctConeResult vct_trace_cone(VctCone cone, VctTraceSettings s) {
     if (t >= s.max_distance) break;
     VctConeStep st;
     bool axis_inside = vct_cone_step(cone, frame, s, t, st);
-    // A capped cone's voxels are narrower than the cone: one sample on its axis would be a
+    // A cone's voxels are narrower than the cone (capped near the receiver, and a level finer
+    // than its diameter everywhere, VCT_FOOTPRINT_LOD_BIAS): one sample on its axis would be a
     // thin probe carrying the whole cone's weight, which hits or misses a small bright
     // surface (an area light) and paints it as blotches that move with the cone layout. So
     // the cone is a fan of `lanes` thin lanes spread across its width (vct_lane_directions),
     // each composited on its own, so that a lane stops at the wall it meets and the lanes
-    // beside it go on. Where the voxels are as wide as the cone the lanes coincide and share
-    // the axis's sample. Each lane ends where it leaves the volume, not
+    // beside it go on. Where the voxels are as wide as the cone (the coarsest level) the lanes
+    // coincide and share the axis's sample. Each lane ends where it leaves the volume, not
     // where the axis does (lanes that met their wall after the axis had left were cut short).
     bool spread = st.diameter > 1.5 * st.voxel;
     if (!spread && !axis_inside) break;

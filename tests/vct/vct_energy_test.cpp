@@ -240,16 +240,104 @@ TEST_F(GpuTest, FloorUnderAnEmittingSquare) {
   }
 }
 
+// A floor, an emitting square high above it and a wall standing between the square and the
+// floor in front of the wall: as long as the floor is wide, kHeight high, its face at kFace (x)
+// towards -x. The square (side kLampSide, its near edge kLampNear) faces the floor from
+// kLampHeight, so that the floor at the wall's base would see it steeply past the wall's top.
+struct WallBeforeTheEmitter {
+  static constexpr float kFace = 0.05f;
+  static constexpr float kThickness = 0.05f;
+  static constexpr float kHeight = 0.3f;
+  static constexpr float kLampHeight = 0.9f;
+  static constexpr float kLampNear = 0.25f;
+  static constexpr float kLampSide = 0.2f;
+  // Floor points in front of the face closer than this see none of the square: a ray over the
+  // wall's top edge from distance d meets the square's height at
+  // kFace + d (kLampHeight / kHeight - 1), short of the square's near edge for every d <= 0.1.
+  static constexpr float kHidden = 0.1f;
+  static constexpr float kViewHalfWidth = 0.3f;  // on the floor, around the hidden strip
+};
+
+scene::Scene floor_behind_a_wall() {
+  scene::SceneBuilder b("floor_behind_a_wall");
+  using S = FloorUnderAnEmitter;
+  using W = WallBeforeTheEmitter;
+  const int floor = b.add_material(matte(glm::vec3(S::kFloorAlbedo)));
+  const int lamp = b.add_material(matte(glm::vec3(0.0f), glm::vec3(S::kRadiance)));
+  b.add_quad("floor", {-0.5f, 0.0f, -0.5f}, {0.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 0.0f}, floor);
+  b.add_quad("emitter", {W::kLampNear, W::kLampHeight, -0.5f * W::kLampSide},
+             {W::kLampSide, 0.0f, 0.0f}, {0.0f, 0.0f, W::kLampSide}, lamp);
+  b.add_box("wall", {W::kFace + 0.5f * W::kThickness, 0.5f * W::kHeight, 0.0f},
+            {W::kThickness, W::kHeight, 1.0f}, floor, 0.0f);
+  b.add_camera("above", {0.0f, S::kCameraHeight, 0.0f}, {0.0f, 0.0f, 0.0f},
+               2.0f * std::atan(W::kViewHalfWidth / S::kCameraHeight), {0.0f, 0.0f, 1.0f});
+  return b.finish();
+}
+
+// The only light is the square's, which the wall hides from the floor in front of it: there the
+// true one-bounce light is 0. Cones rising beside the wall must not read the square past it.
+// Read at voxels as wide as the cone, whose filter reaches a cone radius beyond it, the strip
+// got 0.070 / 0.046 (32^3 / 64^3) of the light the unhidden square would give it (the Cornell
+// boxes' floors at the blocks' bases their ceiling light); read at voxels whose filter is as
+// wide as the cone (or lane), 0.011 / 0.008 (docs/error-budget.md, thirtieth round).
+TEST_F(GpuTest, WallHidesAnEmitterFromTheFloorAtItsBase) {
+  using S = FloorUnderAnEmitter;
+  using W = WallBeforeTheEmitter;
+  const uint32_t size = kEnergyBoundImageSize;
+  const scene::Scene scene = floor_behind_a_wall();
+  const CameraPixelRays rays(scene.cameras.front(), size);
+  const double x0 = W::kLampNear;
+  const double x1 = W::kLampNear + W::kLampSide;
+  const double z0 = -0.5 * W::kLampSide;
+  const double z1 = 0.5 * W::kLampSide;
+  const double h = W::kLampHeight;
+  const glm::dvec3 square[4] = {{x0, h, z0}, {x1, h, z0}, {x1, h, z1}, {x0, h, z1}};
+  for (uint32_t resolution : {32u, 64u}) {
+    RenderHarness harness(voxel_gi_render_setup(vct_gi_setup(resolution), scene, size));
+    harness.render();
+    const RenderedImage indirect = harness.output("indirect");
+    expect_finite_non_negative(indirect, "floor behind a wall");
+    // The strip between 1 cm from the wall's face and the end of the hidden part, within the
+    // square's width: rendered light against the light the square would give it unhidden.
+    double rendered = 0.0;
+    double unhidden = 0.0;
+    int pixels = 0;
+    for (uint32_t y = 0; y < size; ++y) {
+      for (uint32_t x = 0; x < size; ++x) {
+        const auto [origin, direction] = rays(x, y);
+        const glm::dvec3 p = origin - (origin.y / direction.y) * direction;
+        const double d = W::kFace - p.x;
+        if (d < 0.01 || d > W::kHidden - 0.01 || p.z < z0 || p.z > z1) continue;
+        const glm::vec4 v = indirect.at(x, y);
+        rendered += 0.2126 * v.r + 0.7152 * v.g + 0.0722 * v.b;
+        unhidden += S::kFloorAlbedo * S::kRadiance *
+                    polygon_form_factor(p, glm::dvec3(0.0, 1.0, 0.0), square);
+        ++pixels;
+      }
+    }
+    ASSERT_GT(pixels, 20) << resolution;
+    const double leak = rendered / unhidden;
+    std::printf(
+        "[hidden emitter] vct %u^3: %d pixels at the wall's base get %.4f of the light "
+        "the square gives them unhidden (true: 0)\n",
+        resolution, pixels, leak);
+    EXPECT_LT(leak, 0.025) << resolution;
+  }
+}
+
 // The lanes of a capped cone spread its width at the axis's angle to the receiver (4 lanes) or
 // in two rows just under and over it (8 lanes). Lanes offset along a straight tangent leaned
 // towards the horizon, the more so the wider the cone, and took light that comes from high above
 // away from every receiver: under this wide emitter 4 lanes gathered 0.960 / 0.971 of the axis
 // alone at 4 / 6 cones, and the Cornell boxes were 5 to 15 points darker (docs/error-budget.md,
-// fifth round); lanes at the axis's elevation gather 0.997 / 1.000 of it. Rows whose lanes were
+// fifth round); lanes at the axis's elevation gathered 0.997 / 1.000 of it. Rows whose lanes were
 // each capped for their own height, or lifted for it, read the emitter 1.21-1.24x (twenty-eighth
-// round). The closed form itself is exceeded (1.11x at 32^3; 1.26x while optical depth was
-// interpolated across the cones' travel, as for the small square above); held from both sides
-// so that it cannot grow unseen.
+// round). The closed form itself is exceeded (1.19x; 1.26x while optical depth was interpolated
+// across the cones' travel, as for the small square above): the filter reaches past the
+// emitter's edge. Lanes read voxels of their share of the cone's width, narrower than the axis
+// alone reads, so they may gather a little less (4 / 8 lanes: 0.991 / 0.985 of the axis at
+// 4 cones, 0.987 / 0.983 at 6; thirtieth round), never more, and not the 3-4% that leaning lost.
+// Held from both sides so that the excess cannot grow unseen.
 TEST_F(GpuTest, ConeLanesKeepTheAxisElevation) {
   const double expected = floor_under_an_emitter_mean_indirect(kEnergyBoundImageSize, kWideEmitter);
   RenderHarness harness(voxel_gi_render_setup(
@@ -269,8 +357,10 @@ TEST_F(GpuTest, ConeLanesKeepTheAxisElevation) {
         "[lanes] %d cones, wide emitter: 1 lane %.4f, 4 lanes %.4f, 8 lanes %.4f of the "
         "closed form %.5f\n",
         cones, mean[0] / expected, mean[1] / expected, mean[2] / expected, expected);
-    EXPECT_NEAR(mean[1] / mean[0], 1.0, 0.015) << cones << " cones, 4 lanes";
-    EXPECT_NEAR(mean[2] / mean[0], 1.0, 0.015) << cones << " cones, 8 lanes";
+    for (int i : {1, 2}) {
+      EXPECT_GT(mean[i] / mean[0], 0.975) << cones << " cones, " << lane_counts[i] << " lanes";
+      EXPECT_LT(mean[i] / mean[0], 1.015) << cones << " cones, " << lane_counts[i] << " lanes";
+    }
     for (double m : mean) {
       EXPECT_GT(m / expected, 0.9) << cones << " cones";
       EXPECT_LT(m / expected, 1.2) << cones << " cones";

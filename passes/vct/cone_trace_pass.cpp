@@ -432,9 +432,10 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
                     1.0,
                     8.0,
                     {},
-                    "lanes of a cone capped near its receiver, spread across its width and "
-                    "composited each on its own (docs/vct.md): an even number from 6 up makes two "
-                    "rows, one under and one over the axis's elevation, fewer make one row at it; "
+                    "lanes of a cone, spread across its width, each reading voxels of its share "
+                    "of it and composited on its own (docs/vct.md): an even number from 6 up "
+                    "makes two rows, one under and one over the axis's elevation, fewer make one "
+                    "row at it; "
                     "1 traces the axis only, several times cheaper on lavapipe, but small bright "
                     "surfaces are hit or missed as blotches",
                     true});

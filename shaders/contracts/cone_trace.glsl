@@ -76,8 +76,8 @@
 #endif
 // Hard cap on the steps of one cone, so that no parameter combination can hang the GPU.
 #define VCT_MAX_STEPS 512
-// Most lanes of a capped cone (vct_trace_cone, VctTraceSettings.lanes): thin sub-cones across
-// its width.
+// Most lanes of a cone (vct_trace_cone, VctTraceSettings.lanes): thin sub-cones across its
+// width.
 #define VCT_MAX_LANES 8
 // A cone stops once it is this opaque: the rest would add less than 1% of its radiance.
 #define VCT_OPACITY_THRESHOLD 0.99

@@ -11,6 +11,7 @@
 #include <string>
 #include <tuple>
 
+#include "engine/image/metrics.hpp"
 #include "engine/scene/scene_builder.hpp"
 #include "tests/common/gi_energy.hpp"
 #include "tests/common/hard_case_scenes.hpp"
@@ -308,8 +309,7 @@ TEST_F(GpuTest, WallHidesAnEmitterFromTheFloorAtItsBase) {
         const glm::dvec3 p = origin - (origin.y / direction.y) * direction;
         const double d = W::kFace - p.x;
         if (d < 0.01 || d > W::kHidden - 0.01 || p.z < z0 || p.z > z1) continue;
-        const glm::vec4 v = indirect.at(x, y);
-        rendered += 0.2126 * v.r + 0.7152 * v.g + 0.0722 * v.b;
+        rendered += image::luminance(&indirect.rgba[(static_cast<size_t>(y) * size + x) * 4]);
         unhidden += S::kFloorAlbedo * S::kRadiance *
                     polygon_form_factor(p, glm::dvec3(0.0, 1.0, 0.0), square);
         ++pixels;

@@ -128,6 +128,48 @@ double lit_square_one_bounce_irradiance(const LitSquare& setup) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Receiver on a floor before a lit wall
+
+std::string LitWall::label() const {
+  char text[64];
+  std::snprintf(text, sizeof text, "receiver %.2f m before the wall", distance);
+  return text;
+}
+
+scene::Scene lit_wall_scene(const LitWall& setup) {
+  scene::SceneBuilder b("lit_wall");
+  const float w = static_cast<float>(LitWall::kWidth);
+  const float h = static_cast<float>(LitWall::kHeight);
+  const float depth = static_cast<float>(LitWall::kDepth);
+  const float d = static_cast<float>(setup.distance);
+  const int wall = b.add_material(matte(glm::vec3(static_cast<float>(LitWall::kAlbedo))));
+  const int floor = b.add_material(matte(glm::vec3(1.0f)));
+  // Facing +z, standing on the floor.
+  b.add_quad("wall", {-0.5f * w, 0.0f, 0.0f}, {w, 0, 0}, {0, h, 0}, wall);
+  // Facing +y, from a little behind the wall to kDepth in front of it.
+  b.add_quad("floor", {-0.5f * w, 0.0f, -0.1f}, {0, 0, depth + 0.1f}, {w, 0, 0}, floor);
+  scene::Light light;
+  light.type = scene::LightType::Directional;
+  light.intensity = static_cast<float>(LitWall::kIrradiance);
+  b.add_light(light, {0.0f, 2.0f, 2.0f}, glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f)));
+  // 4 cm above the receiver, looking down at it; the view's half-width there is 6 mm.
+  const float above = 0.04f;
+  b.add_camera("at_receiver", {0.0f, above, d}, {0.0f, 0.0f, d}, 2.0f * std::atan(0.006f / above),
+               {0.0f, 0.0f, -1.0f});
+  return b.finish();
+}
+
+double lit_wall_one_bounce_irradiance(const LitWall& setup) {
+  const double half = 0.5 * LitWall::kWidth;
+  const glm::dvec3 wall[] = {{-half, 0.0, 0.0},
+                             {half, 0.0, 0.0},
+                             {half, LitWall::kHeight, 0.0},
+                             {-half, LitWall::kHeight, 0.0}};
+  const double f = polygon_form_factor({0.0, 0.0, setup.distance}, {0.0, 1.0, 0.0}, wall);
+  return LitWall::kAlbedo * LitWall::kIrradiance * std::sqrt(0.5) * f;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Camera rays
 
 CameraPixelRays::CameraPixelRays(const scene::Camera& camera, uint32_t size)
@@ -470,6 +512,12 @@ IndirectComparison compare_lit_square(const VoxelGiSetup& gi, const LitSquare& s
           lit_square_one_bounce_irradiance(square) / pi};
 }
 
+IndirectComparison compare_lit_wall(const VoxelGiSetup& gi, const LitWall& wall) {
+  // Receiver albedo 1: outgoing radiance E / pi.
+  return {render_at_every_placement(gi, lit_wall_scene(wall), 16),
+          lit_wall_one_bounce_irradiance(wall) / pi};
+}
+
 IndirectComparison compare_lit_box(const VoxelGiSetup& gi, const BoxRadiosity& radiosity) {
   const uint32_t size = 32;
   const scene::Scene box = lit_box_scene();
@@ -566,6 +614,19 @@ void expect_lit_square_matches_closed_form(const VoxelGiSetup& gi, SquareLight l
                 gi.label.c_str(), square.label().c_str(), c.expected, c.mean_ratio(),
                 c.ratios().c_str());
     EXPECT_NEAR(c.mean_ratio(), 1.0, tolerance) << gi.label << ", " << square.label();
+  }
+}
+
+void expect_receiver_before_a_lit_wall_matches_closed_form(const VoxelGiSetup& gi,
+                                                           double tolerance) {
+  ASSERT_EQ(gi.indirect_bounces, 1) << "the closed form is for one bounce";
+  for (double distance : kWallDistances) {
+    const LitWall wall{distance};
+    const IndirectComparison c = compare_lit_wall(gi, wall);
+    std::printf("[lit wall] %s, %s: analytic %.5f, mean ratio %.4f (per placement%s)\n",
+                gi.label.c_str(), wall.label().c_str(), c.expected, c.mean_ratio(),
+                c.ratios().c_str());
+    EXPECT_NEAR(c.mean_ratio(), 1.0, tolerance) << gi.label << ", " << wall.label();
   }
 }
 

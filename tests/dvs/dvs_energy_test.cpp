@@ -28,6 +28,10 @@ TEST_P(DvsAnalyticTest, ReceiverOverASquareUnderAPointLight) {
   expect_lit_square_matches_closed_form(dvs_gi_setup(GetParam(), 0), SquareLight::Point);
 }
 
+TEST_P(DvsAnalyticTest, ReceiverBeforeALitWall) {
+  expect_receiver_before_a_lit_wall_matches_closed_form(dvs_gi_setup(GetParam(), 0));
+}
+
 // A cone sees a voxel's light only from the side its surface faces (contracts/cone_trace.glsl,
 // vct_facing): under the square, in its shadow, nothing comes down through it.
 TEST_P(DvsAnalyticTest, ReceiverUnderASquareGetsNoLightThroughIt) {

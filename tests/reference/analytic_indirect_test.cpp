@@ -32,6 +32,19 @@ TEST_F(AnalyticIndirectTest, ReceiverOverALitSquareMatchesThePathTracer) {
   }
 }
 
+// The receiver on the floor before the lit wall, near it and far from it: the same bar.
+TEST_F(AnalyticIndirectTest, ReceiverBeforeALitWallMatchesThePathTracer) {
+  for (double distance : kWallDistances) {
+    const LitWall wall{distance};
+    const PathTracedMean traced = path_traced_mean_indirect(lit_wall_scene(wall), 16, 1, 512);
+    const double expected = lit_wall_one_bounce_irradiance(wall) / std::numbers::pi;
+    std::printf("%s: path traced %.5f (standard error %.5f), analytic %.5f\n", wall.label().c_str(),
+                traced.luminance, traced.standard_error, expected);
+    EXPECT_NEAR(traced.luminance, expected, 5.0 * traced.standard_error + 2e-3 * expected)
+        << wall.label();
+  }
+}
+
 // The box's 32 x 32 view after 1 to 3 indirect bounces: within 5 standard errors plus 1% (the
 // radiosity's piecewise-constant patches; 12 and 24 patches per edge agree to 0.5%).
 TEST_F(AnalyticIndirectTest, ClosedBoxMatchesThePathTracerPerBounce) {

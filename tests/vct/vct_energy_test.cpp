@@ -30,6 +30,10 @@ TEST_P(VctAnalyticTest, ReceiverOverASquareUnderAPointLight) {
   expect_lit_square_matches_closed_form(vct_gi_setup(GetParam()), SquareLight::Point);
 }
 
+TEST_P(VctAnalyticTest, ReceiverBeforeALitWall) {
+  expect_receiver_before_a_lit_wall_matches_closed_form(vct_gi_setup(GetParam()));
+}
+
 // A cone sees a voxel's light only from the side its surface faces (contracts/cone_trace.glsl,
 // vct_facing): under the square, in its shadow, nothing comes down through it.
 TEST_P(VctAnalyticTest, ReceiverUnderASquareGetsNoLightThroughIt) {

@@ -82,9 +82,9 @@ void main() {
       float plane = voxel_plane_offset(texelFetch(voxel_normal, texel, 0));
       vec3 surface = p + unit_n * (plane * size);
       // One cone frame for every voxel (rotation 0). Turning it from voxel to voxel, as the
-      // per-pixel gather does, lost 5% per bounce in the closed box of
-      // tests/dvs/dvs_energy_test.cpp (2 voxel bounces: 0.96 -> 0.85 of radiosity at 32^3),
-      // though every uniform turn stays within 0.98-1.00 there: not understood yet.
+      // per-pixel gather does, changes neither the closed box of tests/dvs/dvs_energy_test.cpp
+      // (0.978 of radiosity with 2 voxel bounces at 32^3, 0.979 with one frame) nor the Sponza
+      // atrium's error by more than 1% (docs/error-budget.md, thirty-first round).
       vec3 irradiance = vct_diffuse_irradiance(surface, unit_n, pc.cones, 0.0, 0.5,
                                                (pc.normal_offset - plane) * size, s, visibility);
       bounce = albedo.rgb * (1.0 / VCT_PI) * sanitize_radiance(irradiance);

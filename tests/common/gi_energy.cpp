@@ -151,7 +151,7 @@ scene::Scene lit_wall_scene(const LitWall& setup) {
   scene::Light light;
   light.type = scene::LightType::Directional;
   light.intensity = static_cast<float>(LitWall::kIrradiance);
-  b.add_light(light, {0.0f, 2.0f, 2.0f}, glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f)));
+  b.add_light(light, {0.0f, 2.0f, 2.0f}, glm::vec3(LitWall::light_direction()));
   // 4 cm above the receiver, looking down at it; the view's half-width there is 6 mm.
   const float above = 0.04f;
   b.add_camera("at_receiver", {0.0f, above, d}, {0.0f, 0.0f, d}, 2.0f * std::atan(0.006f / above),
@@ -166,7 +166,9 @@ double lit_wall_one_bounce_irradiance(const LitWall& setup) {
                              {half, LitWall::kHeight, 0.0},
                              {-half, LitWall::kHeight, 0.0}};
   const double f = polygon_form_factor({0.0, 0.0, setup.distance}, {0.0, 1.0, 0.0}, wall);
-  return LitWall::kAlbedo * LitWall::kIrradiance * std::sqrt(0.5) * f;
+  // The wall faces +z; the light comes from -light_direction().
+  const double cosine = glm::dot(-LitWall::light_direction(), glm::dvec3(0.0, 0.0, 1.0));
+  return LitWall::kAlbedo * LitWall::kIrradiance * cosine * f;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -604,16 +606,26 @@ void expect_thin_wall_in_one_voxel_sends_nothing_through(const VoxelGiSetup& gi)
   EXPECT_LT(rendered.dark, fraction * rendered.lit) << gi.label;
 }
 
+namespace {
+
+// Prints one closed-form case's ratios under `tag` and expects their mean within `tolerance`.
+void expect_mean_ratio_near_one(const char* tag, const VoxelGiSetup& gi,
+                                const std::string& case_label, const IndirectComparison& c,
+                                double tolerance) {
+  std::printf("[%s] %s, %s: analytic %.5f, mean ratio %.4f (per placement%s)\n", tag,
+              gi.label.c_str(), case_label.c_str(), c.expected, c.mean_ratio(), c.ratios().c_str());
+  EXPECT_NEAR(c.mean_ratio(), 1.0, tolerance) << gi.label << ", " << case_label;
+}
+
+}  // namespace
+
 void expect_lit_square_matches_closed_form(const VoxelGiSetup& gi, SquareLight light,
                                            double tolerance, double units_per_metre) {
   ASSERT_EQ(gi.indirect_bounces, 1) << "the closed form is for one bounce";
   for (double height : kReceiverHeights) {
     const LitSquare square{light, height, false, units_per_metre};
-    const IndirectComparison c = compare_lit_square(gi, square);
-    std::printf("[lit square] %s, %s: analytic %.5f, mean ratio %.4f (per placement%s)\n",
-                gi.label.c_str(), square.label().c_str(), c.expected, c.mean_ratio(),
-                c.ratios().c_str());
-    EXPECT_NEAR(c.mean_ratio(), 1.0, tolerance) << gi.label << ", " << square.label();
+    expect_mean_ratio_near_one("lit square", gi, square.label(), compare_lit_square(gi, square),
+                               tolerance);
   }
 }
 
@@ -622,11 +634,7 @@ void expect_receiver_before_a_lit_wall_matches_closed_form(const VoxelGiSetup& g
   ASSERT_EQ(gi.indirect_bounces, 1) << "the closed form is for one bounce";
   for (double distance : kWallDistances) {
     const LitWall wall{distance};
-    const IndirectComparison c = compare_lit_wall(gi, wall);
-    std::printf("[lit wall] %s, %s: analytic %.5f, mean ratio %.4f (per placement%s)\n",
-                gi.label.c_str(), wall.label().c_str(), c.expected, c.mean_ratio(),
-                c.ratios().c_str());
-    EXPECT_NEAR(c.mean_ratio(), 1.0, tolerance) << gi.label << ", " << wall.label();
+    expect_mean_ratio_near_one("lit wall", gi, wall.label(), compare_lit_wall(gi, wall), tolerance);
   }
 }
 

@@ -140,7 +140,9 @@ struct LitWall {
   static constexpr double kHeight = 0.6;
   static constexpr double kDepth = 2.0;  // floor in front of the wall
   static constexpr double kAlbedo = 0.8;
-  static constexpr double kIrradiance = 3.0;  // directional light (lux), at 45 degrees
+  static constexpr double kIrradiance = 3.0;  // directional light (lux)
+  // Where the light points: down and towards the wall, 45 degrees off both.
+  static glm::dvec3 light_direction() { return glm::normalize(glm::dvec3(0.0, -1.0, -1.0)); }
   std::string label() const;
 };
 

@@ -23,6 +23,7 @@
 #define VOXEL_CLIPMAP_SET 0
 #define VOXEL_CLIPMAP_BINDING 0
 #include "contracts/voxel_clipmap.glsl"
+#include "contracts/voxel_direct_light.glsl"
 
 #ifndef HAS_SHADOWS
 #define HAS_SHADOWS 0
@@ -75,29 +76,17 @@ float shadow_visibility(uint index, vec3 p, vec3 plane_normal, vec3 facing, floa
 }
 #endif
 
-// Irradiance at the surface point p (anchor-relative + anchor = world) of a plane with unit
-// normal n (has_normal false: a voxel whose faces cancelled, lit as if facing each light).
+// Irradiance at the anchor-relative surface point p of a plane with unit normal n (has_normal
+// false: a voxel whose faces cancelled, lit as if facing each light).
 vec3 surface_irradiance(vec3 p, vec3 n, bool has_normal, float size) {
   vec3 irradiance = vec3(0.0);
   uint light_count = scene_light_count();
   for (uint i = 0u; i < light_count; ++i) {
     SceneLight light = scene_lights[i];
-    vec3 l;
-    float attenuation = 1.0;
-    float distance_to_light = 0.0;  // unused by orthographic (directional) maps
-    if (light.type == SCENE_LIGHT_DIRECTIONAL) {
-      l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
-    } else {
-      vec3 to_light = light.position - p;
-      // A light inside or next to the voxel must not give 1/0: clamp at a quarter voxel.
-      float d2 = max(dot(to_light, to_light), max(0.0625 * size * size, 1e-8));
-      float d = sqrt(d2);
-      distance_to_light = d;
-      l = to_light / d;
-      attenuation = scene_light_falloff(light, d, -l) / d2;
-    }
+    VoxelLightIncidence incidence = voxel_light_incidence(light, p, size);
+    vec3 l = incidence.direction;
     float cos_theta = has_normal ? dot(n, l) : 1.0;
-    if (attenuation <= 0.0 || cos_theta <= 0.0) continue;
+    if (incidence.attenuation <= 0.0 || cos_theta <= 0.0) continue;
     float visibility = 1.0;
 #if HAS_SHADOWS
     // Look up from just in front of the surface: p lies on the group's frontmost plane (the
@@ -105,10 +94,10 @@ vec3 surface_irradiance(vec3 p, vec3 n, bool has_normal, float size) {
     // one would look past occluders lying close in front of the surface (a lamp's shade just
     // under a ceiling).
     vec3 facing = has_normal ? n : l;
-    visibility = shadow_visibility(i, p, n, facing, size, pc.normal_offset * size,
-                                   distance_to_light);
+    visibility = shadow_visibility(i, p + voxel_clipmap.anchor.xyz, n, facing, size,
+                                   pc.normal_offset * size, incidence.distance);
 #endif
-    irradiance += light.radiance * (attenuation * cos_theta * visibility);
+    irradiance += light.radiance * (incidence.attenuation * cos_theta * visibility);
   }
   return irradiance;
 }
@@ -147,7 +136,7 @@ void main() {
   vec3 n = has_normal ? n_raw / n_len : vec3(0.0);
 
   // The voxel's surface: its centre moved onto the average surface plane
-  // (contracts/voxel_volumes.glsl), world space (anchor-relative arithmetic first for precision).
+  // (contracts/voxel_volumes.glsl), anchor-relative.
   float size = voxel_size(level);
   vec3 center = voxel_level_min(level) + (vec3(window) + 0.5) * size;
   float offset = voxel_plane_offset(normal_occupied) * size;
@@ -165,7 +154,7 @@ void main() {
   for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
     group_light[g] = 0.0;
     if (face_shares[g] <= 0.0) continue;
-    vec3 p = center + face_normals[g] * (face_offsets[g] * size) + voxel_clipmap.anchor.xyz;
+    vec3 p = center + face_normals[g] * (face_offsets[g] * size);
     vec3 e = surface_irradiance(p, face_normals[g], true, size);
     irradiance += face_shares[g] * e;
     group_light[g] = face_shares[g] * voxel_luminance(reflectance * e + emission);
@@ -175,7 +164,7 @@ void main() {
 #endif
 #endif
   if (groups == 0) {  // no faces volume, or a voxel written without one
-    vec3 p = center + (has_normal ? n * offset : vec3(0.0)) + voxel_clipmap.anchor.xyz;
+    vec3 p = center + (has_normal ? n * offset : vec3(0.0));
     irradiance = surface_irradiance(p, n, has_normal, size);
   }
   vec3 radiance = reflectance * irradiance + emission;

@@ -24,6 +24,7 @@ namespace voxgi::passes::dvs {
 namespace {
 
 enum Occlusion : uint32_t { kOcclusionNone = 0, kOcclusionShadowMap = 1, kOcclusionVoxelRays = 2 };
+enum Cosine : uint32_t { kCosinePlane = 0, kCosineNormalWeighted = 1 };
 
 struct LightingPush {
   uint32_t size[3];
@@ -32,6 +33,7 @@ struct LightingPush {
   float shadow_bias;
   uint32_t shadow_slots;
   uint32_t max_steps;
+  uint32_t cosine;
 };
 
 class VoxelLightingPass final : public graph::Pass {
@@ -124,6 +126,7 @@ class VoxelLightingPass final : public graph::Pass {
     push.shadow_kappa = static_cast<float>(ctx.number("shadow_kappa"));
     push.shadow_bias = static_cast<float>(ctx.number("shadow_bias"));
     push.max_steps = static_cast<uint32_t>(ctx.integer("shadow_max_steps"));
+    push.cosine = ctx.choice("cosine") == "normal_weighted" ? kCosineNormalWeighted : kCosinePlane;
     if (has_shadow_maps_) {
       push.shadow_slots = contracts::write_shadow_inputs(ctx, writer, 4, 5);
     }
@@ -165,8 +168,9 @@ void register_voxel_lighting(graph::Registry& registry) {
   graph::PassTypeInfo info;
   info.type = "dvs.voxel_lighting";
   info.doc =
-      "Deferred voxel shading: per-voxel direct lighting (point, spot, directional) with "
-      "normal-weighted attenuation, shadow-map or soft voxel-ray occlusion, plus emission";
+      "Deferred voxel shading: per-voxel direct lighting (point, spot, directional) with the "
+      "plane's cosine or the seed's normal-weighted attenuation, shadow-map or soft voxel-ray "
+      "occlusion, plus emission";
   info.inputs = {
       contracts::clipmap_info_input(),
       clipmap_input("albedo", "voxel albedo (rgb) and opacity (a)"),
@@ -190,6 +194,16 @@ void register_voxel_lighting(graph::Registry& registry) {
        "the same light shares, kept for dvs.voxel_bounce (with direct and light_shares)"},
   };
   info.params = {
+      {"cosine",
+       graph::ParamType::Enum,
+       0.0,
+       0.0,
+       0.0,
+       {"plane", "normal_weighted"},
+       "cosine of each surface towards a light: plane, max(N.L, 0) of the voxel's (or face "
+       "group's) plane, or normal_weighted, the seed's per-axis attenuation (§2.1), which "
+       "lights tilted planes as axis faces",
+       true},
       {"occlusion",
        graph::ParamType::Enum,
        2.0,

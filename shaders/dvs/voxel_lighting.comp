@@ -1,9 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Deferred voxel shading, direct part (Villegas §2): the outgoing diffuse radiance of every
-// voxel of the clipmap under the scene's punctual lights, with the normal-weighted attenuation
-// of §2.1, occlusion from the shadow maps or from soft voxel ray casting (§2.2.1), plus the
-// voxel's emission (§2.3). One invocation per texel of the stacked clipmap image. With the
+// voxel of the clipmap under the scene's punctual lights (contracts/voxel_direct_light.glsl),
+// with the plane's cosine or the normal-weighted attenuation of §2.1, occlusion from the
+// shadow maps or from soft voxel ray casting (§2.2.1), plus the voxel's emission (§2.3). One invocation per texel of the stacked clipmap image. With the
 // faces volume (HAS_FACES) each group of the voxel's writers (the surfaces facing along one
 // signed axis, contracts/voxel_volumes.glsl) is lit on its own, with its own normal, surface
 // point and occlusion, and the voxel holds their mean weighted by their share of its area.
@@ -13,6 +13,7 @@
 #include "lib/scene.glsl"
 #include "contracts/shadow_data.glsl"
 #include "dvs/voxel_volume.glsl"
+#include "contracts/voxel_direct_light.glsl"
 
 #ifndef HAS_EMISSION
 #define HAS_EMISSION 0
@@ -61,6 +62,8 @@ layout(set = 0, binding = 10, r32ui) writeonly uniform uimage3D out_direct_share
 const uint OCCLUSION_NONE = 0u;
 const uint OCCLUSION_SHADOW_MAP = 1u;
 const uint OCCLUSION_VOXEL_RAYS = 2u;
+const uint COSINE_PLANE = 0u;
+const uint COSINE_NORMAL_WEIGHTED = 1u;
 
 layout(push_constant) uniform Push {
   uvec3 size;           // the stacked image: (R, R, R * L)
@@ -69,6 +72,7 @@ layout(push_constant) uniform Push {
   float shadow_bias;    // start offset of voxel shadow rays, in voxels of the receiver
   uint shadow_slots;    // lights with shadow-map data
   uint max_steps;       // cap on the samples of one shadow ray
+  uint cosine;          // COSINE_*
 } pc;
 
 // §2.2.1 soft voxel shadows: march from the voxel towards the light through the opacity of
@@ -95,6 +99,21 @@ float voxel_ray_visibility(vec3 origin, vec3 dir, float max_t, float receiver_si
 }
 
 
+// D(N, l): the cosine of a surface with normal `normal` (the voxel's averaged normal, any
+// length, or one group's unit normal) towards the unit light direction l. Mode "plane": the
+// surface is the plane of that normal, D = max(N.l, 0), what a surface receives. Mode
+// "normal_weighted": the seed's attenuation (§2.1), which lights the voxel as the axis faces its
+// normal selects; for a tilted plane it differs from the plane's cosine, and it lights planes
+// turned away from a grazing light (docs/dvs.md). Where the faces cancelled both use the
+// seed's third per axis, half lit.
+float surface_cosine(vec3 normal, vec3 l) {
+  float len2 = dot(normal, normal);
+  if (pc.cosine == COSINE_NORMAL_WEIGHTED || !(len2 >= 1e-6) || isinf(len2)) {
+    return dvs_normal_weighted_cosine(normal, l);
+  }
+  return max(dot(normal * inversesqrt(len2), l), 0.0);
+}
+
 // Irradiance at the point p (anchor-relative) of a surface with normal `normal` (the voxel's
 // averaged normal, any length, or one group's unit normal) in a voxel of edge `size`.
 vec3 surface_irradiance(vec3 p, vec3 normal, float size) {
@@ -103,32 +122,18 @@ vec3 surface_irradiance(vec3 p, vec3 normal, float size) {
   uint light_count = scene_light_count();
   for (uint i = 0u; i < light_count; ++i) {
     SceneLight light = scene_lights[i];
-    vec3 l;
-    float attenuation = 1.0;
-    float max_t = 3.4e38;
-    float distance_to_light = 0.0;
-    if (light.type == SCENE_LIGHT_DIRECTIONAL) {
-      l = safe_normalize(-light.direction, vec3(0.0, 1.0, 0.0));
-    } else {
-      vec3 to_light = voxel_relative(light.position) - p;
-      // A light inside the voxel (on a surface, inside geometry) lights it as if it were
-      // half a voxel away: the voxel's surfaces are at least that far on average, and 1/d^2
-      // stays finite.
-      float d2 = max(dot(to_light, to_light), 0.25 * size * size);
-      float d = sqrt(d2);
-      l = safe_normalize(to_light, vec3(0.0, 1.0, 0.0));
-      attenuation = scene_light_falloff(light, d, -l) / d2;
-      max_t = d - 0.5 * size;
-      distance_to_light = d;
-    }
-    float cosine = dvs_normal_weighted_cosine(normal, l);
-    if (attenuation <= 0.0 || cosine <= 0.0) continue;
+    VoxelLightIncidence incidence = voxel_light_incidence(light, p, size);
+    vec3 l = incidence.direction;
+    float cosine = surface_cosine(normal, l);
+    if (incidence.attenuation <= 0.0 || cosine <= 0.0) continue;
     float visibility = 1.0;
     // Rays and lookups start off the surface: along the normal, or towards the light where
     // the faces cancelled.
     vec3 offset_dir = dot(n, n) > 0.0 ? n : l;
     if (pc.occlusion == OCCLUSION_VOXEL_RAYS) {
       vec3 origin = p + offset_dir * (pc.shadow_bias * size);
+      // Directional lights: no end; point lights: up to half a voxel before the light.
+      float max_t = incidence.distance > 0.0 ? incidence.distance - 0.5 * size : 3.4e38;
       visibility = voxel_ray_visibility(origin, l, max_t, size);
     }
 #if HAS_SHADOW_MAPS
@@ -139,10 +144,10 @@ vec3 surface_irradiance(vec3 p, vec3 normal, float size) {
       visibility =
           shadow_voxel_visibility(shadow_maps, shadow_lights[i], float(i * 6u),
                                   p + voxel_clipmap.anchor.xyz, n, offset_dir, size, 0.0,
-                                  distance_to_light);
+                                  incidence.distance);
     }
 #endif
-    irradiance += light.radiance * (attenuation * cosine * visibility);
+    irradiance += light.radiance * (incidence.attenuation * cosine * visibility);
   }
   return irradiance;
 }

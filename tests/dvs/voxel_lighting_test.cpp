@@ -155,6 +155,56 @@ INSTANTIATE_TEST_SUITE_P(
                   "voxel_rays"}),
     [](const ::testing::TestParamInfo<LightCase>& param) { return std::string(param.param.name); });
 
+// The seed's attenuation (§2.1) of a voxel with unit normal n towards l: the axis faces the
+// normal's signs select, weighted by the squared components.
+float seed_normal_weighted_cosine(glm::vec3 n, glm::vec3 l) {
+  float d = 0.0f;
+  for (int k = 0; k < 3; ++k) d += n[k] * n[k] * std::max(n[k] > 0.0f ? l[k] : -l[k], 0.0f);
+  return d;
+}
+
+// A plane whose voxels hold a tilted normal, under a directional light that faces it and one
+// that grazes it from behind. "plane" (the default) lights it with its own cosine, max(N.L, 0),
+// dark from behind; "normal_weighted" with the seed's per-axis attenuation, which lights the
+// plane turned away from the light too. Half-float rounding as above.
+TEST_F(GpuTest, TiltedPlaneTakesItsOwnCosineOrTheSeedsAttenuation) {
+  const glm::vec3 n = glm::normalize(glm::vec3(0.6f, 0.8f, 0.0f));
+  auto voxels = std::make_shared<VoxelSourceData>();
+  voxels->grid = std::make_unique<VoxelGrid>(kRes, 1, kVoxel, glm::vec3(0.0f));
+  voxels->grid->fill([&](glm::vec3 c, float size) {
+    VoxelValue v = floor_voxel(c, size);
+    if (v.opacity > 0.0f) v.normal = n;
+    return v;
+  });
+  struct Case {
+    const char* light;
+    glm::vec3 to_light;
+  };
+  const Case cases[] = {{"facing", glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f))},
+                        {"grazing_from_behind", glm::normalize(glm::vec3(-0.9f, 0.45f, 0.1f))}};
+  for (const char* mode : {"plane", "normal_weighted"}) {
+    for (const Case& c : cases) {
+      DvsRunner runner(lighting_setup(
+          scene_with_light(scene::LightType::Directional, {0, 3, 0}, -c.to_light, 3.0f), voxels,
+          std::string("\"occlusion\": \"none\", \"cosine\": \"") + mode + "\""));
+      runner.render();
+      const std::vector<float> radiance = runner.read("radiance");
+      const float cosine = std::string(mode) == "plane"
+                               ? std::max(glm::dot(n, c.to_light), 0.0f)
+                               : seed_normal_weighted_cosine(n, c.to_light);
+      const glm::vec3 expected = kAlbedo / kPi * 3.0f * cosine;
+      const glm::ivec3 probe = voxels->grid->window_voxel_at(0, {0.3f, 0.05f, -0.4f});
+      const glm::vec4 got = texel_rgba(radiance, voxels->grid->texel_index(0, probe));
+      for (int ch = 0; ch < 3; ++ch) {
+        EXPECT_NEAR(got[ch], expected[ch], 0.005f * expected[ch] + 1e-6f)
+            << mode << ", " << c.light << ", channel " << ch;
+      }
+      std::cout << mode << ", light " << c.light << ": radiance " << got.g << " (cosine " << cosine
+                << ")\n";
+    }
+  }
+}
+
 // A floor under a one-voxel-thick square slab 4 voxels above it, lit by a tilted directional
 // light: floor voxels in the slab's shadow are dark, voxels far from it fully lit, and the
 // visibility rises monotonically across the penumbra.

@@ -3,10 +3,11 @@
 // Deferred voxel shading, direct part (Villegas §2): the outgoing diffuse radiance of every
 // voxel of the clipmap under the scene's punctual lights (contracts/voxel_direct_light.glsl),
 // with the plane's cosine or the normal-weighted attenuation of §2.1, occlusion from the
-// shadow maps or from soft voxel ray casting (§2.2.1), plus the voxel's emission (§2.3). One invocation per texel of the stacked clipmap image. With the
-// faces volume (HAS_FACES) each group of the voxel's writers (the surfaces facing along one
-// signed axis, contracts/voxel_volumes.glsl) is lit on its own, with its own normal, surface
-// point and occlusion, and the voxel holds their mean weighted by their share of its area.
+// shadow maps or from soft voxel ray casting (§2.2.1), plus the voxel's emission (§2.3). One
+// invocation per texel of the stacked clipmap image. With the faces volume (HAS_FACES) each
+// group of the voxel's writers (the surfaces facing along one signed axis,
+// contracts/voxel_volumes.glsl) is lit on its own, with its own normal, surface point and
+// occlusion, and the voxel holds their mean weighted by their share of its area.
 #include "contracts/voxel_clipmap.glsl"
 #include "lib/common.glsl"
 #include "contracts/voxel_volumes.glsl"

@@ -130,24 +130,37 @@ double lit_square_one_bounce_irradiance(const LitSquare& setup) {
 // ---------------------------------------------------------------------------------------------
 // Receiver on a floor before a lit wall
 
+std::array<glm::dvec3, 4> LitWall::corners() const {
+  const double half = 0.5 * kWidth;
+  const glm::dvec3 up = kHeight * glm::dvec3(0.0, std::cos(lean), -std::sin(lean));
+  return {glm::dvec3(-half, 0.0, 0.0), glm::dvec3(half, 0.0, 0.0), glm::dvec3(half, 0.0, 0.0) + up,
+          glm::dvec3(-half, 0.0, 0.0) + up};
+}
+
+glm::dvec3 LitWall::normal() const {
+  return {0.0, std::sin(lean), std::cos(lean)};
+}
+
 std::string LitWall::label() const {
-  char text[64];
-  std::snprintf(text, sizeof text, "receiver %.2f m before the wall", distance);
+  char text[96];
+  std::snprintf(text, sizeof text, "receiver %.2f m before the wall, leaning %.0f degrees",
+                distance, lean * 180.0 / pi);
   return text;
 }
 
 scene::Scene lit_wall_scene(const LitWall& setup) {
   scene::SceneBuilder b("lit_wall");
   const float w = static_cast<float>(LitWall::kWidth);
-  const float h = static_cast<float>(LitWall::kHeight);
   const float depth = static_cast<float>(LitWall::kDepth);
   const float d = static_cast<float>(setup.distance);
   const int wall = b.add_material(matte(glm::vec3(static_cast<float>(LitWall::kAlbedo))));
   const int floor = b.add_material(matte(glm::vec3(1.0f)));
-  // Facing +z, standing on the floor.
-  b.add_quad("wall", {-0.5f * w, 0.0f, 0.0f}, {w, 0, 0}, {0, h, 0}, wall);
-  // Facing +y, from a little behind the wall to kDepth in front of it.
-  b.add_quad("floor", {-0.5f * w, 0.0f, -0.1f}, {0, 0, depth + 0.1f}, {w, 0, 0}, floor);
+  // Facing +z (tilted up by its lean), standing on the floor.
+  const std::array<glm::dvec3, 4> c = setup.corners();
+  b.add_quad("wall", glm::vec3(c[0]), glm::vec3(c[1] - c[0]), glm::vec3(c[3] - c[0]), wall);
+  // Facing +y, from behind the wall's top to kDepth in front of it.
+  const float behind = 0.1f + static_cast<float>(-c[3].z);
+  b.add_quad("floor", {-0.5f * w, 0.0f, -behind}, {0, 0, depth + behind}, {w, 0, 0}, floor);
   scene::Light light;
   light.type = scene::LightType::Directional;
   light.intensity = static_cast<float>(LitWall::kIrradiance);
@@ -160,14 +173,11 @@ scene::Scene lit_wall_scene(const LitWall& setup) {
 }
 
 double lit_wall_one_bounce_irradiance(const LitWall& setup) {
-  const double half = 0.5 * LitWall::kWidth;
-  const glm::dvec3 wall[] = {{-half, 0.0, 0.0},
-                             {half, 0.0, 0.0},
-                             {half, LitWall::kHeight, 0.0},
-                             {-half, LitWall::kHeight, 0.0}};
+  const std::array<glm::dvec3, 4> c = setup.corners();
+  const glm::dvec3 wall[] = {c[0], c[1], c[2], c[3]};
   const double f = polygon_form_factor({0.0, 0.0, setup.distance}, {0.0, 1.0, 0.0}, wall);
-  // The wall faces +z; the light comes from -light_direction().
-  const double cosine = glm::dot(-LitWall::light_direction(), glm::dvec3(0.0, 0.0, 1.0));
+  // The light comes from -light_direction().
+  const double cosine = glm::dot(-LitWall::light_direction(), setup.normal());
   return LitWall::kAlbedo * LitWall::kIrradiance * cosine * f;
 }
 
@@ -632,8 +642,7 @@ void expect_lit_square_matches_closed_form(const VoxelGiSetup& gi, SquareLight l
 void expect_receiver_before_a_lit_wall_matches_closed_form(const VoxelGiSetup& gi,
                                                            double tolerance) {
   ASSERT_EQ(gi.indirect_bounces, 1) << "the closed form is for one bounce";
-  for (double distance : kWallDistances) {
-    const LitWall wall{distance};
+  for (const LitWall& wall : kLitWalls) {
     expect_mean_ratio_near_one("lit wall", gi, wall.label(), compare_lit_wall(gi, wall), tolerance);
   }
 }

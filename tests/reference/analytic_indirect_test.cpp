@@ -32,10 +32,10 @@ TEST_F(AnalyticIndirectTest, ReceiverOverALitSquareMatchesThePathTracer) {
   }
 }
 
-// The receiver on the floor before the lit wall, near it and far from it: the same bar.
+// The receiver on the floor before the lit wall, near it and far from it, and before the wall
+// leaning back: the same bar.
 TEST_F(AnalyticIndirectTest, ReceiverBeforeALitWallMatchesThePathTracer) {
-  for (double distance : kWallDistances) {
-    const LitWall wall{distance};
+  for (const LitWall& wall : kLitWalls) {
     const PathTracedMean traced = path_traced_mean_indirect(lit_wall_scene(wall), 16, 1, 512);
     const double expected = lit_wall_one_bounce_irradiance(wall) / std::numbers::pi;
     std::printf("%s: path traced %.5f (standard error %.5f), analytic %.5f\n", wall.label().c_str(),

@@ -126,13 +126,14 @@ double one_bounce_irradiance_over_square(double height, double side, double albe
 // ---------------------------------------------------------------------------------------------
 // A receiver on a floor in front of a lit wall (a courtyard's floor before its far side).
 //
-// The wall (albedo 0.8, kWidth x kHeight, standing on the floor at z = 0 and facing +z) is lit
-// at 45 degrees by a directional light that also lights the floor; the receiver (albedo 1) lies
-// on the floor `distance` in front of the wall's middle. The floor cannot light itself, so
-// the receiver's one-bounce irradiance is rho E_light cos(45 deg) F(receiver -> wall), closed
-// form (polygon_form_factor). The wall's top edge is a sharp edge low over a far receiver's
-// horizon, where cones of a few directions integrate it coarsely and read it through their
-// samples' footprint (docs/error-budget.md, thirty-first round).
+// The wall (albedo 0.8, kWidth x kHeight, standing on the floor at z = 0 and facing +z, or
+// leaning back by `lean`) is lit by a directional light 45 degrees off the floor that also
+// lights the floor; the receiver (albedo 1) lies on the floor `distance` in front of the wall's
+// middle. The floor cannot light itself, so the receiver's one-bounce irradiance is
+// rho E_light (normal . light) F(receiver -> wall), closed form (polygon_form_factor). The wall's
+// top edge is a sharp edge low over a far receiver's horizon, where cones of a few directions
+// integrate it coarsely and read it through their samples' footprint (docs/error-budget.md,
+// thirty-first round).
 struct LitWall {
   double distance = 0.3;  // receiver in front of the wall's foot (m)
   // How far the wall leans back, its top away from the receiver (radians): a tilted plane,

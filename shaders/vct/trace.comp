@@ -151,51 +151,22 @@ void store_shadow(ivec2 pixel, float visibility) {
 #if INTERLEAVED
 // Interleaved cone sets (docs/vct.md): a few cones in one fixed frame see every point of a
 // plane from the same few azimuths, so what they miss is missed everywhere alike (the means of
-// the Cornell boxes swung by 25 points with the frame's orientation at 6 cones). Pixel (x, y)
-// turns its set by 2 pi i / n^2 about its normal and moves every cone to (j + 1/2) / n^2 of its
-// ring, with i = n a + b and j = n b + a for a(x, y), b(x, y) two orthogonal Latin squares of
-// order n: every n x n window holds each turn and each ring position once, the n^2 pairs fill
-// the (turn, ring) square one per n x n block of it, and every row and column of the window
-// (a thin surface averages no more than that) holds one turn from each n-th of the circle and
-// one position from each n-th of the ring. Each pixel's result is the average of such a window
-// over the pixels of its own surface (interleave.comp): n^2 cone sets at the cost of one.
-// (Turns alone left every cone at its ring's middle, and a few rings sample the polar angle
-// coarsely: 4 and 6 cones were 4 to 6 points darker than with both on the shared Cornell box.
-// With i = (x mod n) n + (y mod n), j = (y mod n) n + (x mod n) a column of pixels held a
-// quarter of the circle and a row a quarter of the ring: docs/error-budget.md, thirty-third
-// round.) Order 2 has no orthogonal pair and keeps that layout.
-//
-// Order 4: one of each symbol in every aligned 2 x 2 block too, indexed (y mod 4) * 4 + x mod 4.
-const int kInterleaveLatinA[16] = int[16](0, 1, 2, 3, 2, 3, 0, 1, 1, 0, 3, 2, 3, 2, 1, 0);
-const int kInterleaveLatinB[16] = int[16](0, 1, 2, 3, 3, 2, 1, 0, 2, 3, 0, 1, 1, 0, 3, 2);
-
-// (i, j) of the pixel's cone set, each in [0, n^2).
-ivec2 interleave_cell(ivec2 pixel) {
-  int n = max(pc.interleave, 1);
-  int x = pixel.x % n;
-  int y = pixel.y % n;
-  int a, b;
-  if (n == 4) {
-    a = kInterleaveLatinA[y * 4 + x];
-    b = kInterleaveLatinB[y * 4 + x];
-  } else if (n % 2 == 1) {
-    a = (x + y) % n;  // orthogonal for every odd n
-    b = (x + 2 * y) % n;
-  } else {
-    a = x;
-    b = y;
-  }
-  return ivec2(n * a + b, n * b + a);
-}
+// the Cornell boxes swung by 25 points with the frame's orientation at 6 cones). Each pixel of
+// an n x n window traces its own turn and ring position of the set (vct/interleave_layout.glsl),
+// and its result is the average of the window over the pixels of its own surface
+// (interleave.comp): n^2 cone sets at the cost of one. (Turns alone left every cone at its
+// ring's middle, and a few rings sample the polar angle coarsely: 4 and 6 cones were 4 to 6
+// points darker than with both on the shared Cornell box.)
+#include "vct/interleave_layout.glsl"
 
 float interleave_rotation(ivec2 pixel) {
   int n = max(pc.interleave, 1);
-  return 2.0 * VCT_PI * float(interleave_cell(pixel).x) / float(n * n);
+  return 2.0 * VCT_PI * float(vct_interleave_cell(pixel, n).x) / float(n * n);
 }
 
 float interleave_ring_position(ivec2 pixel) {
   int n = max(pc.interleave, 1);
-  return (float(interleave_cell(pixel).y) + 0.5) / float(n * n);
+  return (float(vct_interleave_cell(pixel, n).y) + 0.5) / float(n * n);
 }
 
 #endif

@@ -173,8 +173,7 @@ scene::Scene lit_wall_scene(const LitWall& setup) {
 }
 
 double lit_wall_one_bounce_irradiance(const LitWall& setup) {
-  const std::array<glm::dvec3, 4> c = setup.corners();
-  const glm::dvec3 wall[] = {c[0], c[1], c[2], c[3]};
+  const std::array<glm::dvec3, 4> wall = setup.corners();
   const double f = polygon_form_factor({0.0, 0.0, setup.distance}, {0.0, 1.0, 0.0}, wall);
   // The light comes from -light_direction().
   const double cosine = glm::dot(-LitWall::light_direction(), setup.normal());

@@ -141,4 +141,27 @@ ImageMetrics compare_images(const ImageRGBA32F& image, const ImageRGBA32F& refer
   return m;
 }
 
+double noise_rel_mse(const ImageRGBA32F& reference, const ImageRGBA32F& variance_of_mean) {
+  if (reference.width == 0 || reference.height == 0) {
+    throw std::invalid_argument("noise_rel_mse: the reference is empty");
+  }
+  if (reference.width != variance_of_mean.width || reference.height != variance_of_mean.height) {
+    throw std::invalid_argument(
+        "noise_rel_mse: the variance is " + std::to_string(variance_of_mean.width) + "x" +
+        std::to_string(variance_of_mean.height) + " but the reference is " +
+        std::to_string(reference.width) + "x" + std::to_string(reference.height));
+  }
+  const size_t pixels = size_t(reference.width) * reference.height;
+  double sum = 0.0;
+  size_t counted = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    const float* b = reference.pixels.data() + i * 4;
+    const float* v = variance_of_mean.pixels.data() + i * 4;
+    if (!finite_pixel(b) || !finite_pixel(v)) continue;
+    ++counted;
+    for (int c = 0; c < 3; ++c) sum += std::max(double(v[c]), 0.0) / (double(b[c]) * b[c] + 0.01);
+  }
+  return counted > 0 ? sum / (3.0 * double(counted)) : 0.0;
+}
+
 }  // namespace voxgi::image

@@ -36,6 +36,16 @@ struct ImageMetrics {
 // Throws std::invalid_argument when the sizes differ or an image is empty.
 ImageMetrics compare_images(const ImageRGBA32F& image, const ImageRGBA32F& reference);
 
+// The relMSE that noise adds in expectation, in either image, to that of images whose errors do
+// not follow it: the mean over pixels and RGB channels of variance / (b^2 + 0.01), b the
+// reference and `variance_of_mean` the variance of the noisy image's per-pixel estimate (a path
+// tracer's, from its samples). A render of n samples per pixel against a converged reference,
+// or any image against a reference of n samples, reads (to first order in the relative noise)
+// its error against the converged image plus this, which falls as 1/n. Pixels where either
+// image is not finite are left out, as in compare_images. Throws std::invalid_argument when the
+// sizes differ or an image is empty.
+double noise_rel_mse(const ImageRGBA32F& reference, const ImageRGBA32F& variance_of_mean);
+
 double luminance(const float* rgba);
 // Mean luminance over the pixels whose RGB are finite; 0 for an empty image.
 double mean_luminance(const ImageRGBA32F& image);

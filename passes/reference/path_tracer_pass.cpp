@@ -30,7 +30,7 @@ using graph::Access;
 using graph::ResourceKind;
 
 constexpr uint32_t kTile = 8;
-constexpr uint32_t kAccumulationLayers = 4;
+constexpr uint32_t kAccumulationLayers = 5;
 constexpr uint32_t kFlagLambert = 1;
 constexpr uint32_t kFlagPixelJitter = 2;
 constexpr uint32_t kFlagDeferredLayers = 4;
@@ -95,19 +95,19 @@ class PathTracerPass final : public graph::Pass {
     }
     request.defines = {{"HAS_ALPHA", has_alpha ? "1" : "0"}};
     gpu::PipelineLayoutDesc layout;
-    layout.bindings = {
-        {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-        {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-        {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-        {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-        {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-        {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-        {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-        {9, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
-        {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
-        {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    layout.bindings = {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {9, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+                       {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
     layout.extra_set_layouts = {ctx.gpu_scene().set_layout()};
     layout.push_constant_size = sizeof(PathTracePush);
     layout.push_constant_stages = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -135,6 +135,7 @@ class PathTracerPass final : public graph::Pass {
     const graph::BoundResource& direct = ctx.resource("direct");
     const graph::BoundResource& indirect = ctx.resource("indirect");
     const graph::BoundResource& variance = ctx.resource("variance");
+    const graph::BoundResource& indirect_variance = ctx.resource("indirect_variance");
     const VkExtent3D extent = linear.info->extent;
 
     VkCommandBuffer cmd = ctx.cmd();
@@ -156,6 +157,7 @@ class PathTracerPass final : public graph::Pass {
         // The scene's texture arrays with a plain bilinear sampler (see path_trace.comp).
         .sampled_image(10, srgb_textures, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler)
         .sampled_image(11, linear_textures, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, sampler)
+        .storage_image(12, indirect_variance.view, indirect_variance.layout)
         .push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
     VkDescriptorSet scene_set = ctx.gpu_scene().descriptor_set();
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout(), 1, 1,
@@ -203,11 +205,11 @@ graph::SlotSpec image_output(const char* name, Access access, std::vector<VkForm
 void validate_path_tracer(graph::PassCheck& check) {
   const graph::ResourceInfo& accumulation = check.info("accumulation");
   if (accumulation.array_layers < kAccumulationLayers) {
-    check.slot_error("accumulation",
-                     "resource '" + accumulation.name + "' needs " +
-                         std::to_string(kAccumulationLayers) +
-                         " layers (running sums of radiance, direct, indirect and squares), has " +
-                         std::to_string(accumulation.array_layers));
+    check.slot_error(
+        "accumulation",
+        "resource '" + accumulation.name + "' needs " + std::to_string(kAccumulationLayers) +
+            " layers (running sums of radiance, direct, indirect and their squares), has " +
+            std::to_string(accumulation.array_layers));
   }
   const VkExtent3D linear = check.info("linear").extent;
   if (accumulation.extent.width < linear.width || accumulation.extent.height < linear.height) {
@@ -227,8 +229,8 @@ void register_path_tracer(graph::Registry& registry) {
       "Russian roulette: the ground truth GI techniques are measured against";
   info.outputs = {
       image_output("accumulation", Access::StorageReadWrite, {VK_FORMAT_R32G32B32A32_SFLOAT},
-                   "persistent running sums, 4 layers: radiance (w: samples), direct, "
-                   "indirect, squared radiance"),
+                   "persistent running sums, 5 layers: radiance (w: samples), direct, "
+                   "indirect, squared radiance, squared indirect"),
       image_output("linear", Access::StorageWrite, hdr, "mean radiance (direct + indirect)"),
       image_output("direct", Access::StorageWrite, hdr,
                    "emission seen directly plus light after one reflection"),
@@ -236,6 +238,9 @@ void register_path_tracer(graph::Registry& registry) {
                    "light after two or more reflections: what GI techniques approximate"),
       image_output("variance", Access::StorageWrite, hdr,
                    "per-channel variance of the mean radiance (w: samples so far)"),
+      image_output("indirect_variance", Access::StorageWrite, hdr,
+                   "per-channel variance of the mean indirect light (w: samples so far): the "
+                   "reference's own noise where GI techniques are measured against it"),
   };
   info.params = {
       {"samples_per_frame",

@@ -5,7 +5,8 @@
 // punctual lights (KHR_lights_punctual falloffs) and of emissive triangles, combined with
 // BSDF-sampled hits of emitters by multiple importance sampling (power heuristic), and
 // unbiased Russian roulette. Each invocation adds `samples` paths of one pixel to running
-// sums (persistent accumulation layers) and writes the means and the variance of the mean.
+// sums (persistent accumulation layers) and writes the means and the variances of the means
+// of all light and of the indirect layer.
 //
 // Layers: direct = emission seen directly + light arriving after one reflection;
 // indirect = everything else (what GI techniques approximate); linear = direct + indirect.
@@ -40,12 +41,13 @@ bool bvh_hit_filter(uint triangle, float u, float v);
 
 layout(set = 0, binding = 0) uniform FrameBlock { FrameUniforms frame; };
 // Layers: 0 sum of radiance (w: sample count), 1 sum of direct, 2 sum of indirect,
-// 3 sum of squared radiance.
+// 3 sum of squared radiance, 4 sum of squared indirect.
 layout(set = 0, binding = 5, rgba32f) uniform image2DArray accumulation;
 layout(set = 0, binding = 6) writeonly uniform image2D out_linear;
 layout(set = 0, binding = 7) writeonly uniform image2D out_direct;
 layout(set = 0, binding = 8) writeonly uniform image2D out_indirect;
 layout(set = 0, binding = 9) writeonly uniform image2D out_variance;
+layout(set = 0, binding = 12) writeonly uniform image2D out_indirect_variance;
 
 const uint FLAG_LAMBERT = 1u;
 const uint FLAG_PIXEL_JITTER = 2u;
@@ -355,16 +357,24 @@ vec3 finite_or_zero(vec3 c) {
   return mix(c, vec3(0.0), bvec3(isnan(c.x) || isinf(c.x), isnan(c.y) || isinf(c.y), isnan(c.z) || isinf(c.z)));
 }
 
+// Unbiased sample variance divided by n: the variance of the mean of n samples whose squares
+// sum to `sum_sq`. Unknown (the half maximum) until there are two samples.
+vec3 variance_of_mean(vec3 sum_sq, vec3 mean, float n) {
+  return n > 1.5 ? max(sum_sq / n - mean * mean, vec3(0.0)) * (n / (n - 1.0)) / n : vec3(HALF_MAX);
+}
+
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(pixel, pc.size))) return;
   ivec2 p = ivec2(pixel);
   vec4 sum = vec4(0.0), sum_direct = vec4(0.0), sum_indirect = vec4(0.0), sum_sq = vec4(0.0);
+  vec4 sum_indirect_sq = vec4(0.0);
   if (pc.sample_base > 0u) {
     sum = imageLoad(accumulation, ivec3(p, 0));
     sum_direct = imageLoad(accumulation, ivec3(p, 1));
     sum_indirect = imageLoad(accumulation, ivec3(p, 2));
     sum_sq = imageLoad(accumulation, ivec3(p, 3));
+    sum_indirect_sq = imageLoad(accumulation, ivec3(p, 4));
   }
   for (uint s = 0u; s < pc.samples; ++s) {
     uint rng = sample_seed(pixel, pc.sample_base + s);
@@ -377,20 +387,22 @@ void main() {
     sum_direct.rgb += direct;
     sum_indirect.rgb += indirect;
     sum_sq.rgb += radiance * radiance;
+    sum_indirect_sq.rgb += indirect * indirect;
   }
   imageStore(accumulation, ivec3(p, 0), sum);
   imageStore(accumulation, ivec3(p, 1), sum_direct);
   imageStore(accumulation, ivec3(p, 2), sum_indirect);
   imageStore(accumulation, ivec3(p, 3), sum_sq);
+  imageStore(accumulation, ivec3(p, 4), sum_indirect_sq);
 
   float n = max(sum.w, 1.0);
   vec3 mean = sum.rgb / n;
-  // Unbiased sample variance divided by n: the variance of the mean. Unknown (the half
-  // maximum) until there are two samples.
-  vec3 variance = sum.w > 1.5 ? max(sum_sq.rgb / n - mean * mean, vec3(0.0)) * (n / (n - 1.0)) / n
-                              : vec3(HALF_MAX);
+  vec3 indirect_mean = sum_indirect.rgb / n;
   imageStore(out_linear, p, vec4(sanitize_radiance(mean), 1.0));
   imageStore(out_direct, p, vec4(sanitize_radiance(sum_direct.rgb / n), 1.0));
-  imageStore(out_indirect, p, vec4(sanitize_radiance(sum_indirect.rgb / n), 1.0));
+  imageStore(out_indirect, p, vec4(sanitize_radiance(indirect_mean), 1.0));
+  vec3 variance = variance_of_mean(sum_sq.rgb, mean, n);
+  vec3 indirect_variance = variance_of_mean(sum_indirect_sq.rgb, indirect_mean, n);
   imageStore(out_variance, p, vec4(sanitize_radiance(variance), sum.w));
+  imageStore(out_indirect_variance, p, vec4(sanitize_radiance(indirect_variance), sum.w));
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "engine/image/error_map.hpp"
 #include "engine/image/metrics.hpp"
@@ -107,6 +108,48 @@ TEST(ImageMetrics, RmseOfAConstantOffsetIsTheOffset) {
   EXPECT_NEAR(m.rmse, 0.25, 1e-7);
   EXPECT_NEAR(m.rel_mse, 0.0625 / 0.26, 1e-7);
   EXPECT_EQ(m.compared_pixels, 15u);
+}
+
+TEST(ImageMetrics, ReferenceNoiseOnTwoPixelsByHand) {
+  // Reference (1, 1, 1) and (0, 0, 0) with variances 0.1 and 0.01 in every channel:
+  // (0.1 / 1.01 + 0.01 / 0.01) / 2.
+  ImageRGBA32F reference = filled(2, 1, 0, 0, 0), variance = filled(2, 1, 0, 0, 0);
+  for (int c = 0; c < 3; ++c) {
+    reference.at(0, 0)[c] = 1.0f;
+    variance.at(0, 0)[c] = 0.1f;
+    variance.at(1, 0)[c] = 0.01f;
+  }
+  EXPECT_NEAR(noise_rel_mse(reference, variance), (0.1 / 1.01 + 1.0) / 2.0, 1e-6);
+  EXPECT_THROW(noise_rel_mse(reference, filled(1, 2, 0, 0, 0)), std::invalid_argument);
+  EXPECT_THROW(noise_rel_mse(ImageRGBA32F(), ImageRGBA32F()), std::invalid_argument);
+}
+
+// A reference with noise of known variance around the exact image (1-3% of it: the term holds to
+// first order in the relative noise): the exact image's relMSE against it is the noise term, and
+// an image with an error of its own reads that error plus the noise term.
+TEST(ImageMetrics, ReferenceNoiseIsWhatANoisyReferenceAddsToRelMse) {
+  const uint32_t size = 192;
+  ImageRGBA32F exact = filled(size, size, 0, 0, 0), noisy = exact, variance = exact;
+  ImageRGBA32F biased = exact;
+  std::mt19937 rng(7);
+  std::normal_distribution<float> unit(0.0f, 1.0f);
+  for (uint32_t y = 0; y < size; ++y) {
+    for (uint32_t x = 0; x < size; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const float mean = 0.5f + float((x + 3 * y + 5 * c) % 11) / 10.0f;
+        const float sigma = 0.005f + 0.005f * float((x + y) % 3);
+        exact.at(x, y)[c] = mean;
+        biased.at(x, y)[c] = 1.1f * mean;
+        noisy.at(x, y)[c] = mean + sigma * unit(rng);
+        variance.at(x, y)[c] = sigma * sigma;
+      }
+    }
+  }
+  const double noise = noise_rel_mse(noisy, variance);
+  EXPECT_GT(noise, 1e-5);
+  EXPECT_NEAR(compare_images(exact, noisy).rel_mse, noise, 0.03 * noise);
+  const double own_error = compare_images(biased, exact).rel_mse;
+  EXPECT_NEAR(compare_images(biased, noisy).rel_mse - noise, own_error, 0.03 * own_error);
 }
 
 TEST(ErrorMap, PerPixelErrorIsTheRelMseTerm) {

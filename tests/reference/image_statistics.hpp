@@ -63,21 +63,6 @@ inline image::ImageRGBA32F box_downsample(const image::ImageRGBA32F& in, uint32_
   return out;
 }
 
-// Expected relMSE (the references' definition, +0.01 in the denominator) that the noise of a
-// render alone contributes against a noise-free reference: mean of variance / (ref^2 + 0.01).
-inline double expected_noise_rel_mse(const RenderedImage& variance,
-                                     const image::ImageRGBA32F& reference) {
-  double sum = 0.0;
-  const size_t n = static_cast<size_t>(variance.width) * variance.height;
-  for (size_t i = 0; i < n; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const double r = reference.pixels[i * 4 + c];
-      sum += variance.rgba[i * 4 + c] / (r * r + 0.01);
-    }
-  }
-  return sum / (3.0 * n);
-}
-
 // Standard error of the mean luminance (Rec. 709) of a render, bounding each pixel's
 // luminance variance by (sum_c w_c sigma_c)^2 since the channels are correlated.
 inline double mean_luminance_standard_error(const RenderedImage& variance) {

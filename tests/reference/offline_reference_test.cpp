@@ -130,7 +130,7 @@ class OfflineReferenceTest : public GpuTest {
       const image::ImageRGBA32F reference =
           box_downsample(image::read_exr(passes, layer[1]), downsample);
       const image::ImageMetrics m = image::compare_images(to_image(rendered), reference);
-      const double noise = expected_noise_rel_mse(variance, reference);
+      const double noise = image::noise_rel_mse(reference, to_image(variance));
       const double lum_se =
           mean_luminance_standard_error(variance) / std::max(m.mean_luminance_reference, 1e-9);
       // Twice the expected noise contribution: relMSE of a noisy image scatters around its

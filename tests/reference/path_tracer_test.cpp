@@ -69,6 +69,8 @@ TEST_F(PathTracerTest, WhiteFurnaceConvergesToTheClosedForm) {
     const RenderedImage variance = harness.output("variance");
     expect_finite_non_negative(linear, "furnace linear");
     ASSERT_EQ(variance.at(0, 0).w, 64.0f) << "4 frames of 16 samples accumulated";
+    const RenderedImage indirect_variance = harness.output("indirect_variance");
+    ASSERT_EQ(indirect_variance.at(0, 0).w, 64.0f);
     for (int ch = 0; ch < 3; ++ch) {
       const MeanEstimate mean = image_mean(linear, variance, ch);
       const double expected = c.expected_factor * le[ch];
@@ -89,6 +91,14 @@ TEST_F(PathTracerTest, WhiteFurnaceConvergesToTheClosedForm) {
       const double ratio = mean.pixel_spread_variance / mean.mean_variance_estimate;
       EXPECT_GT(ratio, 0.6) << "variance output underestimates the noise, channel " << ch;
       EXPECT_LT(ratio, 1.6) << "variance output overestimates the noise, channel " << ch;
+      // The same of the indirect layer's variance (what the bench takes as the noise of a
+      // reference's indirect light).
+      const MeanEstimate indirect = image_mean(harness.output("indirect"), indirect_variance, ch);
+      const double indirect_ratio =
+          indirect.pixel_spread_variance / indirect.mean_variance_estimate;
+      EXPECT_GT(indirect_ratio, 0.6)
+          << "indirect_variance underestimates the noise, channel " << ch;
+      EXPECT_LT(indirect_ratio, 1.6) << "indirect_variance overestimates the noise, channel " << ch;
     }
   }
 }
@@ -294,7 +304,7 @@ TEST_F(PathTracerTest, HardCasesStayFiniteAndNonNegative) {
   setup.overrides = {{"path_tracer.samples_per_frame", "4"}};
   RenderHarness harness(setup);
   harness.render(2);
-  for (const char* output : {"linear", "direct", "indirect", "variance"}) {
+  for (const char* output : {"linear", "direct", "indirect", "variance", "indirect_variance"}) {
     expect_finite_non_negative(harness.output(output), std::string("hard case ") + output);
   }
   const RenderedImage linear = harness.output("linear");

@@ -325,6 +325,10 @@ class BenchRun {
     s.reference_cache_hit = same_bounce->cache_hit;
     if (!same_bounce->indirect) return s;
     if (indirect) s.indirect = image::compare_images(*indirect, *same_bounce->indirect);
+    if (same_bounce->indirect_variance) {
+      s.reference_noise_rel_mse =
+          image::noise_rel_mse(*same_bounce->indirect, *same_bounce->indirect_variance);
+    }
     if (full && full->indirect) {
       s.missing_fraction = missing_indirect_fraction(image::mean_luminance(*full->indirect),
                                                      image::mean_luminance(*same_bounce->indirect));

@@ -171,6 +171,9 @@ std::optional<ReferenceImages> ReferenceCache::find(const std::string& key) cons
     if (fs::is_regular_file(entry / "indirect.exr", ec)) {
       images.indirect = image::read_exr(entry / "indirect.exr");
     }
+    if (fs::is_regular_file(entry / "indirect_variance.exr", ec)) {
+      images.indirect_variance = image::read_exr(entry / "indirect_variance.exr");
+    }
   } catch (const image::ImageError&) {
     return std::nullopt;  // damaged: render it again
   }
@@ -193,6 +196,10 @@ ReferenceImages ReferenceCache::store(const std::string& key,
   if (outputs.count("indirect")) {
     image::write_exr(temp / "indirect.exr", outputs.at("indirect"), image::ExrPixelType::Float);
   }
+  if (outputs.count("indirect_variance")) {
+    image::write_exr(temp / "indirect_variance.exr", outputs.at("indirect_variance"),
+                     image::ExrPixelType::Float);
+  }
   image::write_png(temp / "display.png", outputs.at("display"));
   write_file_atomically(temp / "reference.json", description_json);
   fs::rename(temp, entry, ec);
@@ -204,6 +211,8 @@ ReferenceImages ReferenceCache::store(const std::string& key,
   images.key = key;
   images.linear = outputs.at("linear");
   if (outputs.count("indirect")) images.indirect = outputs.at("indirect");
+  if (outputs.count("indirect_variance"))
+    images.indirect_variance = outputs.at("indirect_variance");
   images.display_png = entry / "display.png";
   return images;
 }

@@ -20,6 +20,8 @@ struct ReferenceImages {
   bool cache_hit = false;
   image::ImageRGBA32F linear;
   std::optional<image::ImageRGBA32F> indirect;
+  // The variance of `indirect`'s per-pixel mean (a path tracer's; none for image references).
+  std::optional<image::ImageRGBA32F> indirect_variance;
   std::filesystem::path display_png;  // in the cache
 };
 
@@ -54,7 +56,8 @@ class ReferenceCache {
   // True when an entry for `key` is present (without reading it).
   bool has_entry(const std::string& key) const;
   // Stores a rendered reference: `outputs` must hold "linear" and "display", may hold
-  // "indirect". Written to a temporary folder and renamed, so readers never see half an entry.
+  // "indirect" and "indirect_variance". Written to a temporary folder and renamed, so readers never
+  // see half an entry.
   ReferenceImages store(const std::string& key,
                         const std::map<std::string, image::ImageRGBA32F>& outputs,
                         const std::string& description_json);

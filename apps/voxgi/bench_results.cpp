@@ -36,7 +36,9 @@ json same_bounce_json(const std::optional<SameBounceResult>& s) {
           {"indirect", metrics_json(s->indirect)},
           {"full_indirect", metrics_json(s->full_indirect)},
           {"full_reference_key", s->full_reference_key},
-          {"missing_fraction", s->missing_fraction ? json(*s->missing_fraction) : json(nullptr)}};
+          {"missing_fraction", s->missing_fraction ? json(*s->missing_fraction) : json(nullptr)},
+          {"reference_noise_rel_mse",
+           s->reference_noise_rel_mse ? json(*s->reference_noise_rel_mse) : json(nullptr)}};
 }
 
 json metrics_json(const std::optional<image::ImageMetrics>& m) {
@@ -135,6 +137,10 @@ class Reader {
     s.full_reference_key = text(v, "full_reference_key", inner);
     if (!at(v, "missing_fraction", inner).is_null()) {
       s.missing_fraction = number(v, "missing_fraction", inner);
+    }
+    // Absent in results written before references carried their variance.
+    if (v.contains("reference_noise_rel_mse") && !v.at("reference_noise_rel_mse").is_null()) {
+      s.reference_noise_rel_mse = number(v, "reference_noise_rel_mse", inner);
     }
     return s;
   }
@@ -385,7 +391,7 @@ std::string results_csv(const BenchResults& results) {
          "same_bounce_rel_mse,same_bounce_ssim_luminance,same_bounce_hdr_flip,"
          "same_bounce_luminance_bias,full_indirect_rel_mse,full_indirect_ssim_luminance,"
          "full_indirect_hdr_flip,full_indirect_luminance_bias,missing_indirect_fraction,"
-         "same_bounce_reference_key,gpu_memory_bytes\n";
+         "same_bounce_reference_key,gpu_memory_bytes,same_bounce_reference_noise_rel_mse\n";
   for (const ConfigResult& r : results.results) {
     std::string overrides;
     for (const auto& [k, v] : r.overrides)
@@ -425,7 +431,10 @@ std::string results_csv(const BenchResults& results) {
     } else {
       out << ",,,,,,,,,,,,";
     }
-    out << ',' << r.gpu_memory_bytes;
+    out << ',' << r.gpu_memory_bytes << ',';
+    if (r.same_bounce && r.same_bounce->reference_noise_rel_mse) {
+      out << number_text(*r.same_bounce->reference_noise_rel_mse);
+    }
     out << '\n';
   }
   return out.str();

@@ -52,6 +52,10 @@ struct SameBounceResult {
   bool reference_cache_hit = false;
   // Approximation error: the technique against what it models.
   std::optional<image::ImageMetrics> indirect;
+  // The part of indirect->rel_mse that is the same-bounce reference's own noise (expected, from
+  // its per-pixel variance; image::noise_rel_mse): the technique's error against the
+  // converged reference is the difference. Absent where the reference has no variance.
+  std::optional<double> reference_noise_rel_mse;
   // What a user sees: the technique against the full reference's indirect light, split as the
   // technique splits it (the bench's reference with deferred_layers, or its image).
   std::optional<image::ImageMetrics> full_indirect;

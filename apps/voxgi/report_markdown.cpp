@@ -71,8 +71,8 @@ std::string optional_cell(const std::optional<double>& value) {
 void write_like_with_like_table(std::ostringstream& md, const Group& group) {
   md << "\n### Indirect light, like with like\n\n";
   md << "| id | technique | settings | bounces, BRDF | same-bounce bias | same-bounce relMSE | "
-        "same-bounce FLIP | full bias | full relMSE | full FLIP | missing |\n";
-  md << "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+        "reference noise | same-bounce FLIP | full bias | full relMSE | full FLIP | missing |\n";
+  md << "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const ConfigResult* r : group.results) {
     if (!r->same_bounce) continue;
     const SameBounceResult& s = *r->same_bounce;
@@ -80,6 +80,7 @@ void write_like_with_like_table(std::ostringstream& md, const Group& group) {
        << s.bounces << ", " << s.brdf << " | "
        << metric_cell(s.indirect, &image::ImageMetrics::luminance_bias) << " | "
        << metric_cell(s.indirect, &image::ImageMetrics::rel_mse) << " | "
+       << optional_cell(s.reference_noise_rel_mse) << " | "
        << metric_cell(s.indirect, &image::ImageMetrics::hdr_flip) << " | "
        << metric_cell(s.full_indirect, &image::ImageMetrics::luminance_bias) << " | "
        << metric_cell(s.full_indirect, &image::ImageMetrics::rel_mse) << " | "
@@ -140,7 +141,12 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
         "are also compared like with like: their `indirect` against the path tracer limited to "
         "the same bounces and BRDF terms (the approximation error), against the full reference "
         "(what a user sees), and the part of the full reference's indirect light the technique "
-        "leaves out by design (missing = (full - same-bounce) / full mean luminance).\n\n";
+        "leaves out by design (missing = (full - same-bounce) / full mean luminance). A "
+        "path-traced "
+        "reference is itself noisy: reference noise is the part of the same-bounce relMSE that "
+        "its noise adds (the mean of its per-pixel variance / (b^2 + 0.01)), the same for every "
+        "configuration it serves; the error against the converged reference is the "
+        "difference.\n\n";
 
   const std::filesystem::path charts = dir / "charts";
   std::filesystem::create_directories(charts);

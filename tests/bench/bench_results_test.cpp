@@ -115,6 +115,7 @@ ConfigResult sample_result(size_t index, const std::string& technique, double ms
     same.full_indirect = m;
     same.full_reference_key = "0123456789abcdef";
     same.missing_fraction = 0.125;
+    same.reference_noise_rel_mse = 0.0625;
     r.same_bounce = same;
   }
   if (index == 2) {  // declared, but no same-bounce reference (an image-only reference)
@@ -162,9 +163,11 @@ TEST(BenchResults, JsonRoundTripKeepsEveryField) {
   ASSERT_TRUE(back.results[1].same_bounce.has_value());
   EXPECT_EQ(back.results[1].same_bounce->reference_set.at("path_tracer.max_depth"), "3");
   EXPECT_DOUBLE_EQ(*back.results[1].same_bounce->missing_fraction, 0.125);
+  EXPECT_DOUBLE_EQ(*back.results[1].same_bounce->reference_noise_rel_mse, 0.0625);
   ASSERT_TRUE(back.results[2].same_bounce.has_value());
   EXPECT_FALSE(back.results[2].same_bounce->indirect.has_value());
   EXPECT_FALSE(back.results[2].same_bounce->missing_fraction.has_value());
+  EXPECT_FALSE(back.results[2].same_bounce->reference_noise_rel_mse.has_value());
   EXPECT_EQ(back.missing(), std::vector<size_t>{3});
 }
 
@@ -177,6 +180,15 @@ TEST(BenchResults, ResultsWrittenBeforeFlipAndSameBounceStillRead) {
   const BenchResults back = results_from_json(doc, "old/results.json");
   EXPECT_FALSE(back.results[1].same_bounce.has_value());
   EXPECT_DOUBLE_EQ(back.results[1].full->hdr_flip, 0.0);
+}
+
+TEST(BenchResults, ResultsWrittenBeforeReferenceNoiseStillRead) {
+  nlohmann::json doc = to_json(sample_results());
+  doc["results"][1]["same_bounce"].erase("reference_noise_rel_mse");
+  const BenchResults back = results_from_json(doc, "old/results.json");
+  ASSERT_TRUE(back.results[1].same_bounce.has_value());
+  EXPECT_FALSE(back.results[1].same_bounce->reference_noise_rel_mse.has_value());
+  EXPECT_DOUBLE_EQ(*back.results[1].same_bounce->missing_fraction, 0.125);
 }
 
 TEST(BenchResults, ReadingAWrongFileNamesTheField) {
@@ -219,11 +231,14 @@ TEST(BenchResults, CsvHasOneQuotedRowPerConfiguration) {
             std::string::npos)
       << rows[0];
   EXPECT_NE(rows[0].find(",full_indirect_rel_mse,"), std::string::npos);
-  EXPECT_NE(rows[0].find(",missing_indirect_fraction,same_bounce_reference_key"),
+  EXPECT_NE(rows[0].find(",missing_indirect_fraction,same_bounce_reference_key,gpu_memory_bytes,"
+                         "same_bounce_reference_noise_rel_mse"),
             std::string::npos);
   EXPECT_NE(rows[2].find(",2,diffuse,0.1,0.9,0.25,-0.05,0.1,0.9,0.25,-0.05,0.125,fedcba9876543210"),
             std::string::npos)
       << rows[2];
+  EXPECT_EQ(rows[2].substr(rows[2].rfind(',')), ",0.0625") << rows[2];
+  EXPECT_EQ(rows[3].back(), ',') << "no reference noise without a same-bounce reference";
 }
 
 TEST(BenchReport, LikeWithLikeTableAndChart) {
@@ -237,19 +252,20 @@ TEST(BenchReport, LikeWithLikeTableAndChart) {
   EXPECT_NE(report.find("| SSIM | FLIP | bias |"), std::string::npos);
   const size_t table = report.find("### Indirect light, like with like");
   ASSERT_NE(table, std::string::npos) << report;
-  EXPECT_NE(report.find("| same-bounce bias | same-bounce relMSE | same-bounce FLIP | full bias | "
-                        "full relMSE | full FLIP | missing |",
+  EXPECT_NE(report.find("| same-bounce bias | same-bounce relMSE | reference noise | "
+                        "same-bounce FLIP | full bias | full relMSE | full FLIP | missing |",
                         table),
             std::string::npos);
   // c001 has both references, c002 only its declaration, c000 no declaration.
-  EXPECT_NE(report.find("| c001 | vct, \"fast\" | cones=1 | 2, diffuse | -0.05 | 0.1 | 0.25 | "
-                        "-0.05 | 0.1 | 0.25 | 0.125 |",
+  EXPECT_NE(report.find("| c001 | vct, \"fast\" | cones=1 | 2, diffuse | -0.05 | 0.1 | 0.0625 | "
+                        "0.25 | -0.05 | 0.1 | 0.25 | 0.125 |",
                         table),
             std::string::npos)
       << report.substr(table);
-  EXPECT_NE(report.find("| c002 | vct, \"fast\" | cones=2 | 1, full | — | — | — | — | — | — | — |",
-                        table),
-            std::string::npos)
+  EXPECT_NE(
+      report.find("| c002 | vct, \"fast\" | cones=2 | 1, full | — | — | — | — | — | — | — | — |",
+                  table),
+      std::string::npos)
       << report.substr(table);
   EXPECT_EQ(report.find("| c000 | ambient | cones=0 | ", table), std::string::npos);
   EXPECT_TRUE(

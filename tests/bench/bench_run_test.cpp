@@ -314,6 +314,10 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
     EXPECT_EQ(same["full_indirect"], item["metrics"]["indirect"]);
     ASSERT_TRUE(same["indirect"].is_object());
     EXPECT_EQ(same["indirect"]["compared_pixels"], 64 * 64);
+    // The same-bounce reference's own noise (4 frames: large, but finite and positive).
+    ASSERT_TRUE(same["reference_noise_rel_mse"].is_number()) << same.dump();
+    EXPECT_GT(same["reference_noise_rel_mse"].get<double>(), 0.0);
+    EXPECT_TRUE(std::isfinite(same["reference_noise_rel_mse"].get<double>()));
     EXPECT_GT(same["indirect"]["hdr_flip"].get<double>(), 0.0);
     const double missing = same["missing_fraction"].get<double>();
     EXPECT_GT(missing, 0.0) << "further bounces and the full BRDF add light";
@@ -322,10 +326,11 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
     ASSERT_NE(row, std::string::npos);
     const std::vector<std::string> cells =
         split_cells(report.substr(row, report.find('\n', row) - row));
-    ASSERT_EQ(cells.size(), 11u);
+    ASSERT_EQ(cells.size(), 12u);
     EXPECT_EQ(cells[3], std::to_string(bounces[i]) + ", diffuse");
     EXPECT_TRUE(same_number(cells[5], same["indirect"]["rel_mse"]));
-    EXPECT_TRUE(same_number(cells[10], missing));
+    EXPECT_TRUE(same_number(cells[6], same["reference_noise_rel_mse"]));
+    EXPECT_TRUE(same_number(cells[11], missing));
   }
   const json& c0 = results["results"][0]["same_bounce"];
   EXPECT_EQ(c0["reference_key"], results["results"][1]["same_bounce"]["reference_key"])

@@ -142,11 +142,10 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
         "the same bounces and BRDF terms (the approximation error), against the full reference "
         "(what a user sees), and the part of the full reference's indirect light the technique "
         "leaves out by design (missing = (full - same-bounce) / full mean luminance). A "
-        "path-traced "
-        "reference is itself noisy: reference noise is the part of the same-bounce relMSE that "
-        "its noise adds (the mean of its per-pixel variance / (b^2 + 0.01)), the same for every "
-        "configuration it serves; the error against the converged reference is the "
-        "difference.\n\n";
+        "path-traced reference is itself noisy: reference noise is the part of the same-bounce "
+        "relMSE that its noise adds (the mean of its per-pixel variance / (b^2 + 0.01)), the "
+        "same for every configuration it serves; the error against the converged reference is "
+        "the difference.\n\n";
 
   const std::filesystem::path charts = dir / "charts";
   std::filesystem::create_directories(charts);

@@ -14,6 +14,21 @@ bool finite_pixel(const float* p) {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 
+// Throws std::invalid_argument, naming `function`, when `image` is empty or its size differs
+// from the reference's.
+void require_same_size(const char* function, const char* what, const ImageRGBA32F& image,
+                       const ImageRGBA32F& reference) {
+  if (image.width == 0 || image.height == 0) {
+    throw std::invalid_argument(std::string(function) + ": " + what + " is empty");
+  }
+  if (image.width != reference.width || image.height != reference.height) {
+    throw std::invalid_argument(std::string(function) + ": " + what + " is " +
+                                std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                " but the reference is " + std::to_string(reference.width) + "x" +
+                                std::to_string(reference.height));
+  }
+}
+
 // Separable Gaussian blur of a single-channel image with clamped edges; the SSIM window.
 std::vector<double> gaussian_blur(const std::vector<double>& src, uint32_t w, uint32_t h) {
   constexpr int kRadius = 5;
@@ -92,15 +107,7 @@ double mean_luminance(const ImageRGBA32F& image) {
 }
 
 ImageMetrics compare_images(const ImageRGBA32F& image, const ImageRGBA32F& reference) {
-  if (image.width == 0 || image.height == 0) {
-    throw std::invalid_argument("compare_images: the image is empty");
-  }
-  if (image.width != reference.width || image.height != reference.height) {
-    throw std::invalid_argument("compare_images: image is " + std::to_string(image.width) + "x" +
-                                std::to_string(image.height) + " but the reference is " +
-                                std::to_string(reference.width) + "x" +
-                                std::to_string(reference.height));
-  }
+  require_same_size("compare_images", "the image", image, reference);
   ImageMetrics m;
   const size_t pixels = size_t(image.width) * image.height;
   // Non-finite pixels enter SSIM as black in both images so the windows stay aligned.
@@ -142,15 +149,7 @@ ImageMetrics compare_images(const ImageRGBA32F& image, const ImageRGBA32F& refer
 }
 
 double noise_rel_mse(const ImageRGBA32F& reference, const ImageRGBA32F& variance_of_mean) {
-  if (reference.width == 0 || reference.height == 0) {
-    throw std::invalid_argument("noise_rel_mse: the reference is empty");
-  }
-  if (reference.width != variance_of_mean.width || reference.height != variance_of_mean.height) {
-    throw std::invalid_argument(
-        "noise_rel_mse: the variance is " + std::to_string(variance_of_mean.width) + "x" +
-        std::to_string(variance_of_mean.height) + " but the reference is " +
-        std::to_string(reference.width) + "x" + std::to_string(reference.height));
-  }
+  require_same_size("noise_rel_mse", "the variance", variance_of_mean, reference);
   const size_t pixels = size_t(reference.width) * reference.height;
   double sum = 0.0;
   size_t counted = 0;

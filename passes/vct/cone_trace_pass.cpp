@@ -37,7 +37,12 @@ struct TracePush {
   float shadow_tan_half_angle;
   int32_t lanes;
   int32_t interleave;
+  int32_t lane_rows;  // VCT_LANE_ROWS_* of contracts/cone_trace.glsl
 };
+
+// contracts/cone_trace.glsl's VCT_LANE_ROWS_APERTURE and VCT_LANE_ROWS_CELL.
+constexpr int32_t kLaneRowsAperture = 0;
+constexpr int32_t kLaneRowsCell = 1;
 
 struct InterleavePush {
   uint32_t width;
@@ -203,6 +208,8 @@ class ConeTracePass final : public graph::Pass {
     };
     auto push_for = [&](VkExtent3D e) {
       const double shadow_angle = specular_ ? 0.0 : ctx.number("shadow_cone_angle") * kRadians;
+      const int32_t lane_rows =
+          !specular_ && ctx.choice("lane_rows") == "cell" ? kLaneRowsCell : kLaneRowsAperture;
       return TracePush{e.width,
                        e.height,
                        specular_ ? 1 : ctx.integer("diffuse_cones"),
@@ -213,7 +220,8 @@ class ConeTracePass final : public graph::Pass {
                        static_cast<float>(ctx.number("start_offset")),
                        static_cast<float>(std::tan(shadow_angle)),
                        ctx.integer("lanes"),
-                       specular_ ? 1 : ctx.integer("interleave")};
+                       specular_ ? 1 : ctx.integer("interleave"),
+                       lane_rows};
     };
 
     const graph::BoundResource& traced = half_ ? ctx.resource("half_res") : result;
@@ -405,6 +413,17 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
                       "n: the cone set turns about the normal in an n x n pixel pattern and each "
                       "pixel averages the n x n window over its own surface, n^2 turns at the "
                       "cost of one (1: the same cones at every pixel; docs/vct.md)",
+                      true});
+    params.push_back({"lane_rows",
+                      graph::ParamType::Enum,
+                      0.0,
+                      0.0,
+                      0.0,
+                      {"aperture", "cell"},
+                      "where a cone's two rows of lanes lie: aperture, a quarter of its half "
+                      "angle under and over its axis; cell, in the lower and upper half of its "
+                      "ring, which samples the hemisphere without bias but is not yet the more "
+                      "accurate on closed rooms (docs/vct.md)",
                       true});
     params.push_back({"shadow_cone_angle",
                       graph::ParamType::Float,

@@ -390,6 +390,11 @@ struct VctCone {
   // origin's height above that plane in metres. Samples never reach below the plane.
   vec3 receiver_normal;
   float receiver_height;
+  // A diffuse cone stands for a cell of the hemisphere (vct_diffuse_cone): where its lanes form
+  // two rows, row 0 and row 1 lie at these heights over the receiver's plane (sin of their
+  // elevation), in the lower and the upper half of the cell. Negative: the rows follow the
+  // aperture (a specular or shadow cone, which stands for no cell).
+  vec2 cell_rows;
 };
 
 // A cone from a point at `receiver_height` metres above a surface of unit normal n.
@@ -401,12 +406,19 @@ VctCone vct_cone_from_surface(vec3 origin, vec3 direction, float tan_half_angle,
   cone.tan_half_angle = tan_half_angle;
   cone.receiver_normal = n;
   cone.receiver_height = receiver_height;
+  cone.cell_rows = vec2(-1.0);
   return cone;
 }
+
+// Where a diffuse cone's two rows of lanes lie (VctTraceSettings.lane_rows,
+// vct_lane_directions): around the axis by its aperture, or in the halves of the cone's cell.
+#define VCT_LANE_ROWS_APERTURE 0
+#define VCT_LANE_ROWS_CELL 1
 
 struct VctTraceSettings {
   float step_factor;     // beta: step length / cone diameter (0 < beta)
   int lanes;             // lanes of a capped cone, 1..VCT_MAX_LANES (vct_trace_cone)
+  int lane_rows;         // VCT_LANE_ROWS_APERTURE or VCT_LANE_ROWS_CELL (diffuse cones)
   float max_distance;    // along the cone, scene units (FLT_MAX: no limit)
   float start_distance;  // skipped at the start, scene units (self-occlusion)
   float ao_falloff;      // lambda of f(r) = 1 / (1 + lambda r), r in level-0 voxel edges
@@ -542,8 +554,16 @@ VctConeResult vct_trace_cone_axis(VctCone cone, VctTraceSettings s) {
 // directions, which made the Cornell boxes 5 to 15 points darker (docs/error-budget.md, fifth
 // round). With an even number of 6 or more, the lanes form two rows of lanes / 2, a quarter of
 // the cone's half angle below and above the axis's elevation (the lower row kept above 3/4 of
-// it); otherwise one row at the axis's elevation. In a row, lane k of n is turned by
-// (2 (k + 1/2) / n - 1) times the cone's azimuthal half-width at the axis's elevation. One row
+// it); otherwise one row at the axis's elevation. Over the ring positions of an interleaved window
+// those rows give the lowest 10 degrees of elevation 0.88 of their cosine-weighted share for 4, 9
+// and 16 cones (and the next 10 degrees 0.90 for 4 and 9). With VCT_LANE_ROWS_CELL a diffuse cone's
+// rows lie instead in the lower and the upper half of its ring (VctCone.cell_rows,
+// vct_diffuse_cone), at the place the axis has in the whole ring, staggered by half a lane: its
+// lanes then sample its cell in proportion to the cosine-weighted solid angle, so that the window's
+// gather converges to the irradiance integral and each cone can be checked against its own band of
+// the hemisphere (docs/error-budget.md, thirty-fifth round, says why that is not the default yet).
+// In a row, lane k of n is turned by (2 (k + 1/2) / n - 1) times the cone's azimuthal half-width at
+// the axis's elevation (k + 1/4 and k + 3/4 for a cell's rows). One row
 // reads a capped cone at one elevation only: with 4 cones (up to 49 degrees of half angle) a
 // surface whose grazing cones see lit walls at their axes' elevation and darkness just above
 // read too bright, the more so the finer the voxels, and two rows of 4 lanes are what made
@@ -571,12 +591,17 @@ void vct_lane_directions(VctCone cone, inout VctConeFrame frame, int lanes,
   float quarter = rows == 2 ? 0.25 * atan(frame.tan_half) : 0.0;
   for (int j = 0; j < lanes; ++j) {
     int k = j / rows;
-    float phi = (2.0 * (float(k) + 0.5) / float(per_row) - 1.0) * phi_max;
+    float slot = float(k) + 0.5;
     float e = elevation;
-    if (rows == 2) {
+    if (rows == 2 && cone.cell_rows.x >= 0.0) {
+      // A cell's rows, staggered by half a lane in azimuth.
+      e = asin(clamp(cone.cell_rows[j % 2], 0.0, 1.0));
+      slot += j % 2 == 0 ? -0.25 : 0.25;
+    } else if (rows == 2) {
       e = j % 2 == 0 ? max(elevation - quarter, 0.75 * elevation)
                      : min(elevation + quarter, 0.5 * VCT_PI);
     }
+    float phi = (2.0 * slot / float(per_row) - 1.0) * phi_max;
     directions[j] = (heading * cos(phi) + side * sin(phi)) * cos(e) + cone.receiver_normal * sin(e);
     frame.lowest_rise = min(frame.lowest_rise, sin(e));
   }
@@ -690,13 +715,20 @@ void vct_tangent_frame(vec3 n, out vec3 t, out vec3 b) {
 // same ones on every point of a plane, so callers vary both between neighbouring points and
 // let their gathers average (docs/vct.md, "Interleaved cone sets").
 void vct_diffuse_cone(int index, int count, float rotation, float ring_position,
-                      out vec3 direction, out float weight, out float tan_half_angle) {
+                      out vec3 direction, out float weight, out float tan_half_angle,
+                      out vec2 cell_rows) {
   count = clamp(count, 1, VCT_MAX_DIFFUSE_CONES);
   index = clamp(index, 0, count - 1);
   weight = VCT_PI / float(count);
   const float golden_angle = 2.39996323;  // pi (3 - sqrt 5)
   float ring = clamp(ring_position, 0.0, 1.0);
   float sin2 = count == 1 ? 0.0 : min((float(index) + ring) / float(count), 1.0 - 1e-4);
+  // The lanes' two rows at the same place in the lower and the upper half of the ring.
+  vec2 row_sin2 = count == 1 ? vec2(0.0)
+                             : min((float(index) + vec2(0.5 + 0.5 * ring, 0.5 * ring)) /
+                                       float(count),
+                                   vec2(1.0 - 1e-4));
+  cell_rows = sqrt(vec2(1.0) - row_sin2);
   float sin_theta = sqrt(sin2);
   float cos_theta = sqrt(1.0 - sin2);
   float phi = float(index) * golden_angle + rotation;
@@ -735,9 +767,11 @@ vec3 vct_diffuse_irradiance_and_cone(vec3 p, vec3 n, int count, float rotation,
     if (i >= 0) {
       vec3 d;
       float tan_half;
-      vct_diffuse_cone(i, count, rotation, ring_position, d, weight, tan_half);
+      vec2 cell_rows;
+      vct_diffuse_cone(i, count, rotation, ring_position, d, weight, tan_half, cell_rows);
       cone = vct_cone_from_surface(origin, normalize(t * d.x + b * d.y + n * d.z), tan_half, n,
                                    normal_offset);
+      if (s.lane_rows == VCT_LANE_ROWS_CELL) cone.cell_rows = cell_rows;
     } else {
       cone_settings.max_distance = extra_max_distance;
     }

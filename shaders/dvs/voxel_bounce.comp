@@ -75,6 +75,7 @@ void main() {
       // One lane: the pixels' final gather integrates over many voxels and filters what one
       // voxel's gather aliases, at a quarter of the cost.
       s.lanes = 1;
+      s.lane_rows = VCT_LANE_ROWS_APERTURE;
       float visibility;
       // Gather from the voxel's average surface plane (contracts/voxel_volumes.glsl), with the cone
       // origin normal_offset voxels off the centre as before.

@@ -82,6 +82,7 @@ layout(push_constant) uniform Push {
   float shadow_tan_half_angle;
   int lanes;  // of a capped cone (contracts/cone_trace.glsl)
   int interleave;  // n of the n x n interleaved cone sets (diffuse; 1: one set everywhere)
+  int lane_rows;   // VCT_LANE_ROWS_APERTURE or VCT_LANE_ROWS_CELL (contracts/cone_trace.glsl)
 } pc;
 
 void store(ivec2 pixel, vec3 result, float visibility) {
@@ -201,6 +202,7 @@ bool gather(ivec2 pixel, out GbufferSample g, out vec4 value, out vec3 reflectan
   s.start_distance = pc.start_offset * voxel;
   s.ao_falloff = pc.ao_falloff;
   s.lanes = pc.lanes;
+  s.lane_rows = pc.lane_rows;
 #if SHADOW_ONLY
   store_shadow(pixel, light_visibility(g.position, p, g.normal, voxel, s));
   return false;

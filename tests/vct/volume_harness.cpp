@@ -323,7 +323,9 @@ std::vector<ProbeResult> run_probes(VolumeGraph& graph, const std::string& info_
         graph.compiled().resources[static_cast<size_t>(r)].end_state.at(0).layout;
     images.push_back({sampler, image->view(), layout_now});
   }
-  const ProbePush push{s.single_cone ? 1 : 0,
+  const ProbePush push{s.lane_layout   ? 2
+                       : s.single_cone ? 1
+                                       : 0,
                        s.diffuse_cones,
                        s.tan_half_angle,
                        s.step_factor,

@@ -115,6 +115,10 @@ struct ProbeResult {
 };
 struct ProbeSettings {
   bool single_cone = false;  // true: one cone along `direction`
+  // true: each probe returns one lane direction of a diffuse cone (xyz, tangent space, z the
+  // normal) and its weight in the gather (w): position = (turn in radians, ring position, cone
+  // index), direction.x = the lane's index. No volume is read.
+  bool lane_layout = false;
   float tan_half_angle = 0.577f;
   int diffuse_cones = 6;
   float step_factor = 1.0f;

@@ -16,7 +16,7 @@ layout(set = 0, binding = 2, std430) readonly buffer Probes { ProbeIn probes[]; 
 layout(set = 0, binding = 3, std430) writeonly buffer Results { vec4 results[]; };
 
 layout(push_constant) uniform Push {
-  int single_cone;
+  int single_cone;  // 1: one free cone; 2: the lane layout of diffuse cones (no volume read)
   int diffuse_cones;
   float tan_half_angle;
   float step_factor;
@@ -39,7 +39,25 @@ void main() {
   s.start_distance = pc.start_distance;
   s.ao_falloff = pc.ao_falloff;
   s.lanes = pc.lanes;
-  if (pc.single_cone != 0) {
+  s.lane_rows = VCT_LANE_ROWS_APERTURE;
+  if (pc.single_cone == 2) {
+    // One lane of diffuse cone (int) position.z of pc.diffuse_cones, turned by position.x and
+    // at ring position position.y, over a receiver whose normal is +z.
+    vec3 d;
+    float weight, tan_half;
+    vec2 cell_rows;
+    int count = clamp(pc.diffuse_cones, 1, VCT_MAX_DIFFUSE_CONES);
+    vct_diffuse_cone(int(probes[i].position.z), count, probes[i].position.x,
+                     probes[i].position.y, d, weight, tan_half, cell_rows);
+    VctCone cone = vct_cone_from_surface(p, d, tan_half, vec3(0.0, 0.0, 1.0), 0.0);
+    cone.cell_rows = cell_rows;
+    VctConeFrame frame = vct_cone_frame(cone);
+    vec3 lanes[VCT_MAX_LANES];
+    int lane_count = clamp(pc.lanes, 1, VCT_MAX_LANES);
+    vct_lane_directions(cone, frame, lane_count, lanes);
+    int lane = clamp(int(probes[i].direction.x), 0, lane_count - 1);
+    results[i] = vec4(lanes[lane], weight / float(lane_count));
+  } else if (pc.single_cone != 0) {
     // A free cone in a medium: no receiver surface.
     VctCone cone = vct_cone_from_surface(p, d, pc.tan_half_angle, vec3(0.0), 0.0);
     VctConeResult r = vct_trace_cone(cone, s);

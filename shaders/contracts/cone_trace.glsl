@@ -714,6 +714,11 @@ void vct_tangent_frame(vec3 n, out vec3 t, out vec3 b) {
 // its ring: a few cones in one fixed set see a scene from a few arbitrary directions, and the
 // same ones on every point of a plane, so callers vary both between neighbouring points and
 // let their gathers average (docs/vct.md, "Interleaved cone sets").
+// sin^2 of the polar angle at `ring_position` (0..1) of diffuse cone `index`'s ring (below).
+float vct_ring_sin2(int index, int count, float ring_position) {
+  return count == 1 ? 0.0 : min((float(index) + ring_position) / float(count), 1.0 - 1e-4);
+}
+
 void vct_diffuse_cone(int index, int count, float rotation, float ring_position,
                       out vec3 direction, out float weight, out float tan_half_angle,
                       out vec2 cell_rows) {
@@ -722,13 +727,10 @@ void vct_diffuse_cone(int index, int count, float rotation, float ring_position,
   weight = VCT_PI / float(count);
   const float golden_angle = 2.39996323;  // pi (3 - sqrt 5)
   float ring = clamp(ring_position, 0.0, 1.0);
-  float sin2 = count == 1 ? 0.0 : min((float(index) + ring) / float(count), 1.0 - 1e-4);
+  float sin2 = vct_ring_sin2(index, count, ring);
   // The lanes' two rows at the same place in the lower and the upper half of the ring.
-  vec2 row_sin2 = count == 1 ? vec2(0.0)
-                             : min((float(index) + vec2(0.5 + 0.5 * ring, 0.5 * ring)) /
-                                       float(count),
-                                   vec2(1.0 - 1e-4));
-  cell_rows = sqrt(vec2(1.0) - row_sin2);
+  cell_rows = sqrt(vec2(1.0 - vct_ring_sin2(index, count, 0.5 + 0.5 * ring),
+                        1.0 - vct_ring_sin2(index, count, 0.5 * ring)));
   float sin_theta = sqrt(sin2);
   float cos_theta = sqrt(1.0 - sin2);
   float phi = float(index) * golden_angle + rotation;

@@ -273,7 +273,7 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
     GTEST_SKIP() << "needs the reference path tracer graph";
   }
   const std::string graphs = R"(
-  "scenes": ["cornell"], "resolution": [64, 64], "warmup_frames": 1, "frames": 2,
+  "scenes": ["cornell"], "resolution": [32, 32], "warmup_frames": 1, "frames": 2,
   "graphs": [
     { "graph": "graphs/vct.json", "set": { "voxel.resolution": 32, "voxel.levels": 1 } },
     { "graph": "graphs/dvs.json", "set": { "voxel.resolution": 32 },
@@ -289,9 +289,9 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
   ASSERT_TRUE(exited_with(r, 0));
   EXPECT_TRUE(
       stderr_has(r, {"same-bounce reference (path_tracer.lambert=true "
-                     "path_tracer.max_depth=2) for cornell / default / 64x64: not cached",
+                     "path_tracer.max_depth=2) for cornell / default / 32x32: not cached",
                      "same-bounce reference (path_tracer.lambert=true "
-                     "path_tracer.max_depth=3) for cornell / default / 64x64: not cached"}));
+                     "path_tracer.max_depth=3) for cornell / default / 32x32: not cached"}));
   const json results = read_json(dir_ / "gi" / "results.json");
   ASSERT_EQ(results["results"].size(), 3u);
   const std::string report = read_text(dir_ / "gi" / "report.md");
@@ -313,7 +313,7 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
     EXPECT_EQ(same["full_reference_key"], item["reference_key"]);
     EXPECT_EQ(same["full_indirect"], item["metrics"]["indirect"]);
     ASSERT_TRUE(same["indirect"].is_object());
-    EXPECT_EQ(same["indirect"]["compared_pixels"], 64 * 64);
+    EXPECT_EQ(same["indirect"]["compared_pixels"], 32 * 32);
     // The same-bounce reference's own noise (4 frames: large, but finite and positive).
     ASSERT_TRUE(same["reference_noise_rel_mse"].is_number()) << same.dump();
     EXPECT_GT(same["reference_noise_rel_mse"].get<double>(), 0.0);

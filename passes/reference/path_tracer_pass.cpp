@@ -47,7 +47,8 @@ struct PathTracePush {
   uint32_t flags;
   uint32_t node_count;
   uint32_t emitter_count;
-  uint32_t pad[3];
+  float first_bounce_distance;
+  uint32_t pad[2];
 };
 static_assert(sizeof(PathTracePush) == 64);
 
@@ -179,6 +180,7 @@ class PathTracerPass final : public graph::Pass {
                  (ctx.flag("deferred_layers") ? kFlagDeferredLayers : 0u);
     push.node_count = bvh.node_count();
     push.emitter_count = bvh.emitter_count();
+    push.first_bounce_distance = static_cast<float>(ctx.number("first_bounce_distance"));
     pipeline_->push_constants(cmd, push);
     vkCmdDispatch(cmd, graph::workgroups(extent.width, kTile),
                   graph::workgroups(extent.height, kTile), 1);
@@ -294,6 +296,16 @@ void register_path_tracer(graph::Registry& registry) {
        {},
        "spread each pixel's rays over its area (a 1-pixel box filter); off: pixel centres, "
        "to compare pixel by pixel with rasterised passes",
+       true},
+      {"first_bounce_distance",
+       graph::ParamType::Float,
+       0.0,
+       0.0,
+       1e6,
+       {},
+       "leave out the light of first reflections farther than this from the visible surface "
+       "(scene units; 0: no limit), by light and BSDF sampling alike: the near part of a "
+       "reference, to set against cones of the same cone_trace.max_distance",
        true},
       {"max_samples",
        graph::ParamType::Int,

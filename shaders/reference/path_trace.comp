@@ -68,7 +68,10 @@ layout(push_constant) uniform Push {
   uint flags;
   uint node_count;
   uint emitter_count;
-  uint pad0;
+  // Farther than this from the visible surface (scene units), the first reflection's light is
+  // left out, by either sampling strategy (0: no limit): the near part of a reference, to set
+  // against cones cut at the same length (cone_trace.max_distance).
+  float first_bounce_distance;
   uint pad1;
   uint pad2;
 } pc;
@@ -211,7 +214,10 @@ vec3 emitted(MaterialSample m) {
 // Direct light from the punctual lights and one sampled emissive triangle (MIS-weighted).
 // Light arriving at `hit` straight from the punctual lights (returned) and, in `from_emitters`,
 // from one sampled emissive triangle (MIS-weighted against BSDF sampling).
-vec3 next_event(Hit hit, Bsdf b, vec3 v, inout uint rng, out vec3 from_emitters) {
+// Emitters farther than `emitter_distance` from the hit are left out (after their random
+// numbers are drawn, so that a cut changes no other term of the path).
+vec3 next_event(Hit hit, Bsdf b, vec3 v, float emitter_distance, inout uint rng,
+                out vec3 from_emitters) {
   vec3 n = hit.shading;
   vec3 result = vec3(0.0);
   from_emitters = vec3(0.0);
@@ -273,6 +279,8 @@ vec3 next_event(Hit hit, Bsdf b, vec3 v, inout uint rng, out vec3 from_emitters)
           float end_eps = 1e-5 + 4e-6 * max(a.x, max(a.y, a.z));
           if (visible(from, l, max(distance(from, p) - 2.0 * end_eps, 0.0), rng)) {
             from_emitters = f * (mis_power(pdf_light, bsdf_pdf(b, n, v, l)) / pdf_light);
+            // Cut after the visibility ray: a path draws the same numbers whatever the cut.
+            if (d > emitter_distance) from_emitters = vec3(0.0);
           }
         }
       }
@@ -301,6 +309,7 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
     rng = g_filter_seed;
     BvhHit h = bvh_trace(origin, dir, 0.0, 3.0e38, pc.node_count, false);
     if (!h.hit) break;  // no environment light
+    if (depth == 1u && pc.first_bounce_distance > 0.0 && h.t > pc.first_bounce_distance) break;
     Hit hit = shade_hit(h, origin, dir);
 
     vec3 le = emitted(hit.material);
@@ -325,7 +334,9 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
     vec3 v = -dir;
     Bsdf b = make_bsdf(hit.material, hit.shading, v);
     vec3 emitter_light;
-    vec3 light = throughput * next_event(hit, b, v, rng, emitter_light);
+    float emitter_distance =
+        depth == 0u && pc.first_bounce_distance > 0.0 ? pc.first_bounce_distance : 3.0e38;
+    vec3 light = throughput * next_event(hit, b, v, emitter_distance, rng, emitter_light);
     emitter_light *= throughput;
     if (!deferred) {
       light += emitter_light;

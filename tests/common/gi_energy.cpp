@@ -477,9 +477,12 @@ RenderSetup path_traced_setup(const scene::Scene& scene, uint32_t size, int indi
 }  // namespace
 
 PathTracedMean path_traced_mean_indirect(const scene::Scene& scene, uint32_t size,
-                                         int indirect_bounces, int samples_per_pixel) {
+                                         int indirect_bounces, int samples_per_pixel,
+                                         const std::map<std::string, std::string>& overrides) {
   const int per_frame = std::min(samples_per_pixel, 32);
-  RenderHarness harness(path_traced_setup(scene, size, indirect_bounces, per_frame));
+  RenderSetup setup = path_traced_setup(scene, size, indirect_bounces, per_frame);
+  for (const auto& [key, value] : overrides) setup.overrides[key] = value;
+  RenderHarness harness(setup);
   harness.render((samples_per_pixel + per_frame - 1) / per_frame);
   const RenderedImage indirect = harness.output("indirect");
   expect_finite_non_negative(indirect, "path-traced indirect");

@@ -278,8 +278,10 @@ struct PathTracedMean {
   double luminance = 0.0;
   double standard_error = 0.0;
 };
+// `overrides`: more path_tracer parameters (e.g. path_tracer.first_bounce_distance).
 PathTracedMean path_traced_mean_indirect(const scene::Scene& scene, uint32_t size,
-                                         int indirect_bounces, int samples_per_pixel);
+                                         int indirect_bounces, int samples_per_pixel,
+                                         const std::map<std::string, std::string>& overrides = {});
 
 // Rendered values, one per placement of kVoxelPlacements, against their reference.
 struct IndirectComparison {

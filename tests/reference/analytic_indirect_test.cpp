@@ -32,6 +32,36 @@ TEST_F(AnalyticIndirectTest, ReceiverOverALitSquareMatchesThePathTracer) {
   }
 }
 
+// path_tracer.first_bounce_distance D keeps the light of the square's part within D of the
+// receiver: a disc of radius sqrt(D^2 - h^2) centred under the receiving point (inside the
+// square here, so no placement of the point on the 15 mm receiver changes it), whose form
+// factor from a parallel differential area is r^2 / (r^2 + h^2); less the receiver's shadow, as
+// in the closed form above. Below the height, nothing. The same bar.
+TEST_F(AnalyticIndirectTest, FirstBounceDistanceKeepsTheSquareWithinIt) {
+  const LitSquare square{SquareLight::Directional, 0.5};
+  const double h = square.height;
+  const double hole = 0.5 * square.shadow_side();
+  const double shadow = parallel_rectangle_form_factor(h, -hole, hole, -hole, hole);
+  for (double radius : {0.15, 0.3}) {
+    const double distance = std::sqrt(radius * radius + h * h);
+    const PathTracedMean traced = path_traced_mean_indirect(
+        lit_square_scene(square), 16, 1, 512,
+        {{"path_tracer.first_bounce_distance", std::to_string(distance)}});
+    const double disc = radius * radius / (radius * radius + h * h);
+    const double expected =
+        LitSquare::kAlbedo * LitSquare::kIrradiance * (disc - shadow) / std::numbers::pi;
+    std::printf(
+        "%s, first bounce within %.4f: path traced %.5f (standard error %.5f), "
+        "analytic %.5f\n",
+        square.label().c_str(), distance, traced.luminance, traced.standard_error, expected);
+    EXPECT_NEAR(traced.luminance, expected, 5.0 * traced.standard_error + 2e-3 * expected)
+        << distance;
+  }
+  const PathTracedMean none = path_traced_mean_indirect(
+      lit_square_scene(square), 16, 1, 64, {{"path_tracer.first_bounce_distance", "0.45"}});
+  EXPECT_EQ(none.luminance, 0.0) << "the square lies 0.5 under the receiver";
+}
+
 // The receiver on the floor before the lit wall, near it and far from it, and before the wall
 // leaning back: the same bar.
 TEST_F(AnalyticIndirectTest, ReceiverBeforeALitWallMatchesThePathTracer) {

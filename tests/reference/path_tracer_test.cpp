@@ -221,6 +221,44 @@ TEST_F(PathTracerTest, AccumulationIsDeterministicAndRestartsOnChange) {
   EXPECT_EQ(a.output("variance").at(5, 5).w, 3.0f);
 }
 
+// path_tracer.first_bounce_distance on the built-in Cornell box, whose ceiling light is an
+// emitter (light sampling at the visible surface and BSDF sampling after it are both cut): the
+// same (pixel, sample) paths lose only terms, so every pixel's indirect light is at most the
+// unlimited one's, and a distance beyond the box changes no bit. (AnalyticIndirectTest checks
+// the cut against a closed form.)
+TEST_F(PathTracerTest, FirstBounceDistanceOnlyLeavesLightOut) {
+  RenderSetup setup;
+  setup.scene = "cornell";
+  setup.graph = "graphs/reference.json";
+  setup.width = setup.height = 16;
+  setup.overrides = {{"path_tracer.samples_per_frame", "4"},
+                     {"path_tracer.max_depth", "2"},
+                     {"path_tracer.deferred_layers", "true"}};
+  const auto indirect = [&](const char* distance) {
+    RenderSetup limited = setup;
+    limited.overrides["path_tracer.first_bounce_distance"] = distance;
+    RenderHarness harness(limited);
+    harness.render(2);
+    return harness.output("indirect");
+  };
+  const RenderedImage all = indirect("0");
+  const RenderedImage beyond = indirect("10");
+  const RenderedImage near = indirect("0.2");
+  EXPECT_EQ(beyond.rgba, all.rgba);
+  double sum_all = 0.0, sum_near = 0.0;
+  for (size_t i = 0; i < all.rgba.size(); i += 4) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LE(near.rgba[i + c], all.rgba[i + c]) << "pixel " << i / 4;
+      sum_all += all.rgba[i + c];
+      sum_near += near.rgba[i + c];
+    }
+  }
+  std::printf("Cornell box, indirect light of first reflections within 0.2: %.3f of all\n",
+              sum_near / sum_all);
+  EXPECT_GT(sum_near, 0.0);
+  EXPECT_LT(sum_near, 0.95 * sum_all);
+}
+
 TEST_F(PathTracerTest, RefitAfterAnInstanceMovedMatchesARebuild) {
   // Render a frame, move the tall block, render again with geometry_changed (the pass refits
   // its BVH): the image equals that of a fresh render of the moved scene (a rebuilt BVH).

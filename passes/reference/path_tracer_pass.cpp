@@ -48,7 +48,8 @@ struct PathTracePush {
   uint32_t node_count;
   uint32_t emitter_count;
   float first_bounce_distance;
-  uint32_t pad[2];
+  float first_bounce_sin2_min;
+  float first_bounce_sin2_max;
 };
 static_assert(sizeof(PathTracePush) == 64);
 
@@ -181,6 +182,8 @@ class PathTracerPass final : public graph::Pass {
     push.node_count = bvh.node_count();
     push.emitter_count = bvh.emitter_count();
     push.first_bounce_distance = static_cast<float>(ctx.number("first_bounce_distance"));
+    push.first_bounce_sin2_min = static_cast<float>(ctx.number("first_bounce_sin2_min"));
+    push.first_bounce_sin2_max = static_cast<float>(ctx.number("first_bounce_sin2_max"));
     pipeline_->push_constants(cmd, push);
     vkCmdDispatch(cmd, graph::workgroups(extent.width, kTile),
                   graph::workgroups(extent.height, kTile), 1);
@@ -306,6 +309,25 @@ void register_path_tracer(graph::Registry& registry) {
        "leave out the light of first reflections farther than this from the visible surface "
        "(scene units; 0: no limit), by light and BSDF sampling alike: the near part of a "
        "reference, to set against cones of the same cone_trace.max_distance",
+       true},
+      {"first_bounce_sin2_min",
+       graph::ParamType::Float,
+       0.0,
+       0.0,
+       1.0,
+       {},
+       "keep only first reflections whose direction's sin^2 to the visible surface's normal is "
+       "at least this (with first_bounce_sin2_max: a band of the cosine-weighted hemisphere, "
+       "where equal steps hold equal weight, as the rings of diffuse cones do)",
+       true},
+      {"first_bounce_sin2_max",
+       graph::ParamType::Float,
+       1.0,
+       0.0,
+       1.0,
+       {},
+       "keep only first reflections whose direction's sin^2 to the visible surface's normal is "
+       "below this (1: up to the horizon); a band no wider than 0 keeps nothing",
        true},
       {"max_samples",
        graph::ParamType::Int,

@@ -72,9 +72,21 @@ layout(push_constant) uniform Push {
   // left out, by either sampling strategy (0: no limit): the near part of a reference, to set
   // against cones cut at the same length (cone_trace.max_distance).
   float first_bounce_distance;
-  uint pad1;
-  uint pad2;
+  // Only first reflections whose direction's sin^2 to the visible surface's normal lies in
+  // [min, max) count (0 and 1: all): a band of the cosine-weighted hemisphere, as one ring of
+  // diffuse cones sees it.
+  float first_bounce_sin2_min;
+  float first_bounce_sin2_max;
 } pc;
+
+// Whether direction l leaves a surface of normal n within the first reflection's band.
+bool in_first_bounce_band(vec3 l, vec3 n) {
+  if (pc.first_bounce_sin2_min <= 0.0 && pc.first_bounce_sin2_max >= 1.0) return true;
+  float c = dot(l, n);
+  float s2 = max(1.0 - c * c, 0.0);
+  return s2 >= pc.first_bounce_sin2_min &&
+         (s2 < pc.first_bounce_sin2_max || pc.first_bounce_sin2_max >= 1.0);
+}
 
 vec2 interpolate2(vec2 a, vec2 b, vec2 c, float u, float v) { return a * (1.0 - u - v) + b * u + c * v; }
 
@@ -214,10 +226,11 @@ vec3 emitted(MaterialSample m) {
 // Direct light from the punctual lights and one sampled emissive triangle (MIS-weighted).
 // Light arriving at `hit` straight from the punctual lights (returned) and, in `from_emitters`,
 // from one sampled emissive triangle (MIS-weighted against BSDF sampling).
-// Emitters farther than `emitter_distance` from the hit are left out (after their random
-// numbers are drawn, so that a cut changes no other term of the path).
-vec3 next_event(Hit hit, Bsdf b, vec3 v, float emitter_distance, inout uint rng,
-                out vec3 from_emitters) {
+// Emitters farther than `emitter_distance` from the hit, or outside the first reflection's
+// band where `first_bounce` holds, are left out (after their random numbers are drawn, so that
+// a cut changes no other term of the path).
+vec3 next_event(Hit hit, Bsdf b, vec3 v, float emitter_distance, bool first_bounce,
+                inout uint rng, out vec3 from_emitters) {
   vec3 n = hit.shading;
   vec3 result = vec3(0.0);
   from_emitters = vec3(0.0);
@@ -280,7 +293,9 @@ vec3 next_event(Hit hit, Bsdf b, vec3 v, float emitter_distance, inout uint rng,
           if (visible(from, l, max(distance(from, p) - 2.0 * end_eps, 0.0), rng)) {
             from_emitters = f * (mis_power(pdf_light, bsdf_pdf(b, n, v, l)) / pdf_light);
             // Cut after the visibility ray: a path draws the same numbers whatever the cut.
-            if (d > emitter_distance) from_emitters = vec3(0.0);
+            if (d > emitter_distance || (first_bounce && !in_first_bounce_band(l, n))) {
+              from_emitters = vec3(0.0);
+            }
           }
         }
       }
@@ -336,7 +351,8 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
     vec3 emitter_light;
     float emitter_distance =
         depth == 0u && pc.first_bounce_distance > 0.0 ? pc.first_bounce_distance : 3.0e38;
-    vec3 light = throughput * next_event(hit, b, v, emitter_distance, rng, emitter_light);
+    vec3 light =
+        throughput * next_event(hit, b, v, emitter_distance, depth == 0u, rng, emitter_light);
     emitter_light *= throughput;
     if (!deferred) {
       light += emitter_light;
@@ -349,6 +365,7 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
     vec3 l = bsdf_sample(b, hit.shading, v, rng);
     float pdf = bsdf_pdf(b, hit.shading, v, l);
     if (!(pdf > 0.0) || dot(l, hit.geometric) <= 0.0) break;
+    if (depth == 0u && !in_first_bounce_band(l, hit.shading)) break;
     vec3 weight = bsdf_eval_cos(b, hit.shading, v, l) / pdf;
     throughput *= weight;
     if (depth + 1u > pc.rr_start) {

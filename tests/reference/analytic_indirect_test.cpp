@@ -62,6 +62,36 @@ TEST_F(AnalyticIndirectTest, FirstBounceDistanceKeepsTheSquareWithinIt) {
   EXPECT_EQ(none.luminance, 0.0) << "the square lies 0.5 under the receiver";
 }
 
+// path_tracer.first_bounce_sin2_min / _max keep the first reflections whose direction has
+// sin^2 theta in a band: seen from the receiver, a disc (or a ring) of the square centred under
+// it, whose form factor is exactly the band's width (a cosine-weighted cone of half angle theta
+// holds sin^2 theta of the hemisphere); the receiver's shadow lies in [0, 5e-4). Both bands
+// stay inside the square (sin^2 theta = 0.25 reaches 0.29 m out at h = 0.5 m). The same bar.
+TEST_F(AnalyticIndirectTest, FirstBounceBandKeepsItsRingOfTheSquare) {
+  const LitSquare square{SquareLight::Directional, 0.5};
+  const double h = square.height;
+  const double hole = 0.5 * square.shadow_side();
+  const double shadow = parallel_rectangle_form_factor(h, -hole, hole, -hole, hole);
+  struct Band {
+    double min, max, form_factor;
+  };
+  for (const Band& band : {Band{0.0, 0.25, 0.25 - shadow}, Band{0.1, 0.25, 0.15}}) {
+    const PathTracedMean traced = path_traced_mean_indirect(
+        lit_square_scene(square), 16, 1, 512,
+        {{"path_tracer.first_bounce_sin2_min", std::to_string(band.min)},
+         {"path_tracer.first_bounce_sin2_max", std::to_string(band.max)}});
+    const double expected =
+        LitSquare::kAlbedo * LitSquare::kIrradiance * band.form_factor / std::numbers::pi;
+    std::printf(
+        "%s, first bounce sin^2 in [%.2f, %.2f): path traced %.5f (standard error %.5f), "
+        "analytic %.5f\n",
+        square.label().c_str(), band.min, band.max, traced.luminance, traced.standard_error,
+        expected);
+    EXPECT_NEAR(traced.luminance, expected, 5.0 * traced.standard_error + 2e-3 * expected)
+        << band.min << " " << band.max;
+  }
+}
+
 // The receiver on the floor before the lit wall, near it and far from it, and before the wall
 // leaning back: the same bar.
 TEST_F(AnalyticIndirectTest, ReceiverBeforeALitWallMatchesThePathTracer) {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -223,12 +224,9 @@ TEST_F(PathTracerTest, AccumulationIsDeterministicAndRestartsOnChange) {
   EXPECT_EQ(a.output("variance").at(5, 5).w, 3.0f);
 }
 
-// path_tracer.first_bounce_distance on the built-in Cornell box, whose ceiling light is an
-// emitter (light sampling at the visible surface and BSDF sampling after it are both cut): the
-// same (pixel, sample) paths lose only terms, so every pixel's indirect light is at most the
-// unlimited one's, and a distance beyond the box changes no bit. (AnalyticIndirectTest checks
-// the cut against a closed form.)
-TEST_F(PathTracerTest, FirstBounceDistanceOnlyLeavesLightOut) {
+// The built-in Cornell box's indirect light (16 x 16, 8 samples per pixel, one bounce, the
+// deferred layers) with `cut`, more path_tracer parameters that leave part of it out.
+RenderedImage cornell_indirect(const std::map<std::string, std::string>& cut) {
   RenderSetup setup;
   setup.scene = "cornell";
   setup.graph = "graphs/reference.json";
@@ -236,16 +234,21 @@ TEST_F(PathTracerTest, FirstBounceDistanceOnlyLeavesLightOut) {
   setup.overrides = {{"path_tracer.samples_per_frame", "4"},
                      {"path_tracer.max_depth", "2"},
                      {"path_tracer.deferred_layers", "true"}};
-  const auto indirect = [&](const char* distance) {
-    RenderSetup limited = setup;
-    limited.overrides["path_tracer.first_bounce_distance"] = distance;
-    RenderHarness harness(limited);
-    harness.render(2);
-    return harness.output("indirect");
-  };
-  const RenderedImage all = indirect("0");
-  const RenderedImage beyond = indirect("10");
-  const RenderedImage near = indirect("0.2");
+  for (const auto& [key, value] : cut) setup.overrides["path_tracer." + key] = value;
+  RenderHarness harness(setup);
+  harness.render(2);
+  return harness.output("indirect");
+}
+
+// path_tracer.first_bounce_distance on the built-in Cornell box, whose ceiling light is an
+// emitter (light sampling at the visible surface and BSDF sampling after it are both cut): the
+// same (pixel, sample) paths lose only terms, so every pixel's indirect light is at most the
+// unlimited one's, and a distance beyond the box changes no bit. (AnalyticIndirectTest checks
+// the cut against a closed form.)
+TEST_F(PathTracerTest, FirstBounceDistanceOnlyLeavesLightOut) {
+  const RenderedImage all = cornell_indirect({});
+  const RenderedImage beyond = cornell_indirect({{"first_bounce_distance", "10"}});
+  const RenderedImage near = cornell_indirect({{"first_bounce_distance", "0.2"}});
   EXPECT_EQ(beyond.rgba, all.rgba);
   double sum_all = 0.0, sum_near = 0.0;
   for (size_t i = 0; i < all.rgba.size(); i += 4) {
@@ -266,25 +269,12 @@ TEST_F(PathTracerTest, FirstBounceDistanceOnlyLeavesLightOut) {
 // direction) into exactly one of them: their indirect light adds up to the whole, pixel by
 // pixel, to float rounding.
 TEST_F(PathTracerTest, FirstBounceBandsAddUpToTheWhole) {
-  RenderSetup setup;
-  setup.scene = "cornell";
-  setup.graph = "graphs/reference.json";
-  setup.width = setup.height = 16;
-  setup.overrides = {{"path_tracer.samples_per_frame", "4"},
-                     {"path_tracer.max_depth", "2"},
-                     {"path_tracer.deferred_layers", "true"}};
-  const auto indirect = [&](double min, double max) {
-    RenderSetup banded = setup;
-    banded.overrides["path_tracer.first_bounce_sin2_min"] = std::to_string(min);
-    banded.overrides["path_tracer.first_bounce_sin2_max"] = std::to_string(max);
-    RenderHarness harness(banded);
-    harness.render(2);
-    return harness.output("indirect");
-  };
-  const RenderedImage whole = indirect(0.0, 1.0);
+  const RenderedImage whole = cornell_indirect({});
   std::vector<double> sum(whole.rgba.size(), 0.0);
   for (int band = 0; band < 4; ++band) {
-    const RenderedImage part = indirect(0.25 * band, 0.25 * (band + 1));
+    const RenderedImage part =
+        cornell_indirect({{"first_bounce_sin2_min", std::to_string(0.25 * band)},
+                          {"first_bounce_sin2_max", std::to_string(0.25 * (band + 1))}});
     for (size_t i = 0; i < sum.size(); ++i) sum[i] += part.rgba[i];
   }
   for (size_t i = 0; i < sum.size(); i += 4) {

@@ -79,6 +79,11 @@ layout(push_constant) uniform Push {
   float first_bounce_sin2_max;
 } pc;
 
+// Whether a first reflection at distance t counts (first_bounce_distance).
+bool within_first_bounce_distance(float t) {
+  return pc.first_bounce_distance <= 0.0 || t <= pc.first_bounce_distance;
+}
+
 // Whether direction l leaves a surface of normal n within the first reflection's band.
 bool in_first_bounce_band(vec3 l, vec3 n) {
   if (pc.first_bounce_sin2_min <= 0.0 && pc.first_bounce_sin2_max >= 1.0) return true;
@@ -226,11 +231,11 @@ vec3 emitted(MaterialSample m) {
 // Direct light from the punctual lights and one sampled emissive triangle (MIS-weighted).
 // Light arriving at `hit` straight from the punctual lights (returned) and, in `from_emitters`,
 // from one sampled emissive triangle (MIS-weighted against BSDF sampling).
-// Emitters farther than `emitter_distance` from the hit, or outside the first reflection's
-// band where `first_bounce` holds, are left out (after their random numbers are drawn, so that
-// a cut changes no other term of the path).
-vec3 next_event(Hit hit, Bsdf b, vec3 v, float emitter_distance, bool first_bounce,
-                inout uint rng, out vec3 from_emitters) {
+// At the visible surface (`first_bounce`), emitters beyond first_bounce_distance or outside the
+// first reflection's band are left out (after their random numbers are drawn, so that a cut
+// changes no other term of the path).
+vec3 next_event(Hit hit, Bsdf b, vec3 v, bool first_bounce, inout uint rng,
+                out vec3 from_emitters) {
   vec3 n = hit.shading;
   vec3 result = vec3(0.0);
   from_emitters = vec3(0.0);
@@ -293,7 +298,8 @@ vec3 next_event(Hit hit, Bsdf b, vec3 v, float emitter_distance, bool first_boun
           if (visible(from, l, max(distance(from, p) - 2.0 * end_eps, 0.0), rng)) {
             from_emitters = f * (mis_power(pdf_light, bsdf_pdf(b, n, v, l)) / pdf_light);
             // Cut after the visibility ray: a path draws the same numbers whatever the cut.
-            if (d > emitter_distance || (first_bounce && !in_first_bounce_band(l, n))) {
+            if (first_bounce &&
+                !(within_first_bounce_distance(d) && in_first_bounce_band(l, n))) {
               from_emitters = vec3(0.0);
             }
           }
@@ -324,7 +330,7 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
     rng = g_filter_seed;
     BvhHit h = bvh_trace(origin, dir, 0.0, 3.0e38, pc.node_count, false);
     if (!h.hit) break;  // no environment light
-    if (depth == 1u && pc.first_bounce_distance > 0.0 && h.t > pc.first_bounce_distance) break;
+    if (depth == 1u && !within_first_bounce_distance(h.t)) break;
     Hit hit = shade_hit(h, origin, dir);
 
     vec3 le = emitted(hit.material);
@@ -349,10 +355,7 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
     vec3 v = -dir;
     Bsdf b = make_bsdf(hit.material, hit.shading, v);
     vec3 emitter_light;
-    float emitter_distance =
-        depth == 0u && pc.first_bounce_distance > 0.0 ? pc.first_bounce_distance : 3.0e38;
-    vec3 light =
-        throughput * next_event(hit, b, v, emitter_distance, depth == 0u, rng, emitter_light);
+    vec3 light = throughput * next_event(hit, b, v, depth == 0u, rng, emitter_light);
     emitter_light *= throughput;
     if (!deferred) {
       light += emitter_light;

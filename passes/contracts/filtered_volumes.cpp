@@ -5,6 +5,7 @@
 
 #include <limits>
 #include <string>
+#include <string_view>
 
 namespace voxgi::contracts {
 
@@ -44,6 +45,50 @@ graph::ParamSpec cone_max_distance_param() {
 
 float cone_max_distance(double value) {
   return value > 0.0 ? static_cast<float>(value) : std::numeric_limits<float>::max();
+}
+
+bool front_light_bound(const graph::PassDeclaration& pass) {
+  return pass.has(kFacingSlots[0]) && pass.has(kFacingSlots[1]);
+}
+
+void validate_front_light_slots(graph::PassCheck& check) {
+  const bool pos = check.has(kFacingSlots[0]), neg = check.has(kFacingSlots[1]);
+  if (!pos && !neg) return;
+  if (pos != neg) {
+    check.slot_error(pos ? kFacingSlots[1] : kFacingSlots[0],
+                     "the front-light mode needs both facing_pos and facing_neg bound");
+    return;
+  }
+  for (const char* slot : kDirectionalSlots) {
+    if (!check.has(slot)) {
+      check.slot_error(kFacingSlots[0],
+                       "the facing volumes go with the six directional volumes pos_x..neg_z; "
+                       "unbound: " +
+                           std::string(slot));
+      return;
+    }
+  }
+}
+
+gpu::ShaderDefine front_light_define(bool front_light) {
+  return {"VCT_FRONT_LIGHT", front_light ? "1" : "0"};
+}
+
+uint32_t volume_array_size(bool anisotropic, bool front_light) {
+  if (!anisotropic) return 1;
+  return front_light ? 8u : 6u;
+}
+
+graph::SlotSpec facing_input(const char* slot) {
+  return {slot,
+          graph::kinds(graph::ResourceKind::Clipmap),
+          graph::Access::Sampled,
+          graph::kStageCompute,
+          {VK_FORMAT_R16G16B16A16_SFLOAT},
+          true,
+          std::string("facing volume from vct.filter (front-light mode): per axis the share of "
+                      "the opacity facing across it, for cones travelling ") +
+              (std::string_view(slot) == kFacingSlots[0] ? "+X, +Y, +Z" : "-X, -Y, -Z")};
 }
 
 VolumeSampler::VolumeSampler(gpu::Context& context) : context_(context) {

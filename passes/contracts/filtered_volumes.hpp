@@ -43,6 +43,27 @@ inline constexpr const char* kFilteredSlot = "filtered";
 inline constexpr std::array<const char*, 6> kDirectionalSlots = {"pos_x", "neg_x", "pos_y",
                                                                  "neg_y", "pos_z", "neg_z"};
 
+// The two facing volumes of the front-light mode (vct.filter writes them when they are bound,
+// every cone tracer reads them when they are bound): per direction of travel the share of the
+// voxels' opacity that lies across it, premultiplied and composited like the light, channel k
+// for axis k; "facing_pos" for +X, +Y, +Z, "facing_neg" for -X, -Y, -Z. With them the six
+// directional volumes hold only the light of the surfaces facing each direction, and a cone
+// reads the light of its three axes over their facing shares (contracts/cone_trace.glsl,
+// VCT_FRONT_LIGHT; docs/vct.md, "A surface lights only its front").
+inline constexpr std::array<const char*, 2> kFacingSlots = {"facing_pos", "facing_neg"};
+
+// True when a pass has both facing volumes bound (validate_front_light_slots makes sure it
+// has both or neither).
+bool front_light_bound(const graph::PassDeclaration& pass);
+// For validate hooks: both facing slots or neither, and only beside the six directional ones.
+void validate_front_light_slots(graph::PassCheck& check);
+// The define cone_trace.glsl reads (VCT_FRONT_LIGHT): the volume array then holds eight
+// samplers, the six directional volumes followed by facing_pos and facing_neg.
+gpu::ShaderDefine front_light_define(bool front_light);
+uint32_t volume_array_size(bool anisotropic, bool front_light);
+// A reader's optional input slot for facing volume `slot`.
+graph::SlotSpec facing_input(const char* slot);
+
 // The sampler cone_trace.glsl needs for the filtered volumes: linear, whole mips, REPEAT, no
 // anisotropic filtering. Owned by the pass that creates it.
 class VolumeSampler {

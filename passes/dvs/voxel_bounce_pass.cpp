@@ -40,9 +40,11 @@ class VoxelBouncePass final : public graph::Pass {
     anisotropic_ =
         ctx.has(contracts::kDirectionalSlots[0]);  // all six or none (validate_voxel_bounce)
     has_light_shares_ = ctx.has("light_shares");
+    front_light_ = anisotropic_ && contracts::front_light_bound(ctx);
     std::vector<gpu::Binding> bindings = {
         {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
-        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0, anisotropic_ ? 6u : 1u},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0,
+         contracts::volume_array_size(anisotropic_, front_light_)},
         {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
         {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
         {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0},
@@ -57,6 +59,7 @@ class VoxelBouncePass final : public graph::Pass {
     pipeline_.emplace(graph::make_pass_compute(
         ctx, "dvs/voxel_bounce.comp", bindings, sizeof(BouncePush), false,
         {{"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
+         contracts::front_light_define(front_light_),
          contracts::unwrapped_windows_define(ctx.info(volumes).clipmap_levels),
          contracts::clipmap_levels_define(ctx.info(volumes).clipmap_levels),
          contracts::refine_levels_define(ctx.integer("refine")),
@@ -92,6 +95,12 @@ class VoxelBouncePass final : public graph::Pass {
       for (const char* slot : contracts::kDirectionalSlots) {
         const graph::BoundResource& v = ctx.resource(slot);
         volumes.push_back({repeat, v.view, v.layout});
+      }
+      if (front_light_) {
+        for (const char* slot : contracts::kFacingSlots) {
+          const graph::BoundResource& v = ctx.resource(slot);
+          volumes.push_back({repeat, v.view, v.layout});
+        }
       }
     } else {
       const graph::BoundResource& v = ctx.resource(contracts::kFilteredSlot);
@@ -131,6 +140,7 @@ class VoxelBouncePass final : public graph::Pass {
  private:
   bool anisotropic_ = false;
   bool has_light_shares_ = false;
+  bool front_light_ = false;  // the facing volumes are bound (contracts::kFacingSlots)
   graph::InputVersions inputs_{
       {"clipmap_info", "albedo", "normal", "direct", "faces", "direct_shares"}};
   std::optional<gpu::ComputePipeline> pipeline_;
@@ -160,8 +170,11 @@ void validate_voxel_bounce(graph::PassCheck& check) {
                          std::to_string(directional) + " directional volume(s) and " +
                          (isotropic ? "'filtered'" : "no 'filtered'") + " are bound");
   }
+  contracts::validate_front_light_slots(check);
   graph::check_same_clipmap_layout(
-      check, "radiance", {"albedo", "normal", "direct", "faces", "direct_shares", "light_shares"});
+      check, "radiance",
+      {"albedo", "normal", "direct", "faces", "direct_shares", "light_shares",
+       contracts::kFacingSlots[0], contracts::kFacingSlots[1]});
   contracts::check_light_shares_have_faces(check);
   if (check.has("light_shares") && !check.has("direct_shares")) {
     check.slot_error("light_shares",
@@ -188,6 +201,9 @@ void register_voxel_bounce(graph::Registry& registry) {
     info.inputs.push_back(filtered_input(contracts::kDirectionalSlots[i],
                                          std::string("directional volume for cones travelling ") +
                                              directions[i] + " from vct.filter (anisotropic)"));
+  }
+  for (const char* slot : contracts::kFacingSlots) {
+    info.inputs.push_back(contracts::facing_input(slot));
   }
   info.inputs.push_back(clipmap_input("albedo", "voxel albedo (rgb) and opacity (a)"));
   info.inputs.push_back(clipmap_input("normal", "voxel averaged normal (xyz), occupancy (w)"));

@@ -93,6 +93,7 @@ class ConeTracePass final : public graph::Pass {
     has_ao_ = !specular_ && ctx.has("ao");
     has_shadow_ = !specular_ && ctx.has("shadow");
     facing_ = ctx.has("voxel_normal");
+    front_light_ = anisotropic_ && contracts::front_light_bound(ctx);
     std::vector<gpu::ShaderDefine> defines = {
         {"SPECULAR", specular_ ? "1" : "0"},
         {"VCT_ANISOTROPIC", anisotropic_ ? "1" : "0"},
@@ -101,6 +102,7 @@ class ConeTracePass final : public graph::Pass {
         {"SHADOW_FORMAT",
          has_shadow_ ? scalar_format_qualifier(ctx.info("shadow").format) : "r16f"}};
     if (facing_) defines.push_back({"HAS_FACING", "1"});
+    defines.push_back(contracts::front_light_define(front_light_));
     const char* volumes_slot =
         anisotropic_ ? contracts::kDirectionalSlots[0] : contracts::kFilteredSlot;
     const uint32_t levels = ctx.info(volumes_slot).clipmap_levels;
@@ -113,7 +115,8 @@ class ConeTracePass final : public graph::Pass {
     }
     std::vector<gpu::Binding> volumes = {
         {kBindingClipmapInfo, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
-        {kBindingVolumes, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0, anisotropic_ ? 6u : 1u}};
+        {kBindingVolumes, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0,
+         contracts::volume_array_size(anisotropic_, front_light_)}};
     if (facing_) volumes.push_back({kBindingFacing, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
     const gpu::Binding result = {kBindingResult, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0};
     const gpu::Binding storage_ao = {kBindingAo, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0};
@@ -191,6 +194,12 @@ class ConeTracePass final : public graph::Pass {
         for (const char* slot : contracts::kDirectionalSlots) {
           const graph::BoundResource& v = ctx.resource(slot);
           images.push_back({repeat, v.view, v.layout});
+        }
+        if (front_light_) {
+          for (const char* slot : contracts::kFacingSlots) {
+            const graph::BoundResource& v = ctx.resource(slot);
+            images.push_back({repeat, v.view, v.layout});
+          }
         }
       } else {
         const graph::BoundResource& v = ctx.resource(contracts::kFilteredSlot);
@@ -297,6 +306,7 @@ class ConeTracePass final : public graph::Pass {
   bool has_ao_ = false;
   bool has_shadow_ = false;
   bool facing_ = false;
+  bool front_light_ = false;  // the facing volumes are bound (contracts::kFacingSlots)
   std::unique_ptr<contracts::VolumeSampler> sampler_;
   std::optional<gpu::ComputePipeline> trace_;
   std::optional<gpu::ComputePipeline> shadow_;
@@ -337,8 +347,10 @@ class ConeTracePass final : public graph::Pass {
 void validate_cone_trace(graph::PassCheck& check) {
   contracts::check_clipmap_info_size(check);
   check_filtered_volumes_bound(check);
+  contracts::validate_front_light_slots(check);
   graph::check_same_clipmap_layout(check, "voxel_normal",
-                                   {contracts::kFilteredSlot, contracts::kDirectionalSlots[0]});
+                                   {contracts::kFilteredSlot, contracts::kDirectionalSlots[0],
+                                    contracts::kFacingSlots[0], contracts::kFacingSlots[1]});
   if (check.choice("resolution") == "half" && !check.has("half_res")) {
     check.param_error("resolution",
                       "'half' needs the output slot 'half_res' bound to an rgba16f image of half "
@@ -379,6 +391,7 @@ std::vector<graph::SlotSpec> trace_inputs() {
                                     std::string("directional volume for cones travelling ") +
                                         directions[i] + " from vct.filter (anisotropic)"));
   }
+  for (const char* slot : contracts::kFacingSlots) inputs.push_back(contracts::facing_input(slot));
   for (contracts::GbufferTarget target :
        {contracts::GbufferTarget::BaseColor, contracts::GbufferTarget::Normal,
         contracts::GbufferTarget::Material, contracts::GbufferTarget::Depth}) {

@@ -34,6 +34,7 @@ constexpr uint32_t kLocal = 4;
 constexpr uint32_t kNormalBinding = 14;
 constexpr uint32_t kFacesBinding = 15;
 constexpr uint32_t kLightSharesBinding = 16;
+constexpr uint32_t kFacingBinding = 17;  // src, dst of facing_pos, then of facing_neg
 
 class FilterPass final : public graph::Pass {
  public:
@@ -48,6 +49,7 @@ class FilterPass final : public graph::Pass {
     level_coverage_ = ctx.has("normal");
     face_facing_ = ctx.has("faces");
     light_shares_ = face_facing_ && anisotropic_ && ctx.has("light_shares");
+    front_light_ = anisotropic_ && face_facing_ && contracts::front_light_bound(ctx);
     std::vector<gpu::Binding> bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 0},
                                           {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0}};
     for (uint32_t v = 0; v < volume_slots_.size(); ++v) {
@@ -63,12 +65,22 @@ class FilterPass final : public graph::Pass {
     if (light_shares_) {
       bindings.push_back({kLightSharesBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 0});
     }
+    if (front_light_) {
+      for (uint32_t b = 0; b < 4; ++b) {
+        bindings.push_back({kFacingBinding + b, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 0});
+      }
+    }
+    output_slots_ = volume_slots_;
+    if (front_light_) {
+      for (const char* slot : contracts::kFacingSlots) output_slots_.push_back(slot);
+    }
     pipeline_.emplace(graph::make_pass_compute(ctx, "vct/filter.comp", bindings, sizeof(FilterPush),
                                                false,
                                                {{"ANISOTROPIC", anisotropic_ ? "1" : "0"},
                                                 {"LEVEL_COVERAGE", level_coverage_ ? "1" : "0"},
                                                 {"FACE_FACING", face_facing_ ? "1" : "0"},
-                                                {"LIGHT_SHARES", light_shares_ ? "1" : "0"}}));
+                                                {"LIGHT_SHARES", light_shares_ ? "1" : "0"},
+                                                {"FRONT_LIGHT", front_light_ ? "1" : "0"}}));
     versions_.forget();
   }
 
@@ -84,7 +96,7 @@ class FilterPass final : public graph::Pass {
     const uint32_t r = radiance.info->extent.width;
     const uint32_t levels = std::max(1u, radiance.info->clipmap_levels);
     uint32_t mips = full_mip_count_of(r);
-    for (const std::string& slot : volume_slots_) {
+    for (const std::string& slot : output_slots_) {
       mips = std::min(mips, ctx.info(slot).mip_levels);
     }
     pipeline_->bind(cmd);
@@ -113,10 +125,17 @@ class FilterPass final : public graph::Pass {
         writer.storage_image(2 + 2 * v, out.image->view(src_mip), out.layout);
         writer.storage_image(3 + 2 * v, out.image->view(dst_mip), out.layout);
       }
+      if (front_light_) {
+        for (uint32_t f = 0; f < 2; ++f) {
+          const graph::BoundResource& out = ctx.resource(contracts::kFacingSlots[f]);
+          writer.storage_image(kFacingBinding + 2 * f, out.image->view(src_mip), out.layout);
+          writer.storage_image(kFacingBinding + 2 * f + 1, out.image->view(dst_mip), out.layout);
+        }
+      }
       writer.push(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout());
     };
     auto barrier = [&] {
-      for (const std::string& slot : volume_slots_) ctx.barrier_within_pass(slot);
+      for (const std::string& slot : output_slots_) ctx.barrier_within_pass(slot);
     };
     push(0, 0);
     for (uint32_t level = 0; level < levels; ++level) {
@@ -147,7 +166,9 @@ class FilterPass final : public graph::Pass {
   bool level_coverage_ = false;
   bool face_facing_ = false;
   bool light_shares_ = false;
+  bool front_light_ = false;
   std::vector<std::string> volume_slots_;
+  std::vector<std::string> output_slots_;  // the volumes and, front light, the facing volumes
   std::optional<gpu::ComputePipeline> pipeline_;
   graph::InputVersions versions_{{"clipmap_info", "radiance", "normal", "faces", "light_shares"}};
 };
@@ -164,9 +185,15 @@ void validate_filter(graph::PassCheck& check) {
                       "pos_z, neg_z bound; unbound: " +
                           missing);
   }
-  graph::check_same_clipmap_layout(check, "radiance",
-                                   {contracts::kFilteredSlot, "normal", "faces", "light_shares",
-                                    "pos_x", "neg_x", "pos_y", "neg_y", "pos_z", "neg_z"});
+  contracts::validate_front_light_slots(check);
+  if (contracts::front_light_bound(check) && !check.has("faces")) {
+    check.slot_error(contracts::kFacingSlots[0],
+                     "the front-light mode needs the voxels' faces: bind the input 'faces'");
+  }
+  graph::check_same_clipmap_layout(
+      check, "radiance",
+      {contracts::kFilteredSlot, "normal", "faces", "light_shares", "pos_x", "neg_x", "pos_y",
+       "neg_y", "pos_z", "neg_z", contracts::kFacingSlots[0], contracts::kFacingSlots[1]});
 }
 
 graph::SlotSpec filtered_output(const char* name, std::string doc) {
@@ -219,6 +246,13 @@ void register_filter(graph::Registry& registry) {
                         std::string("directional volume seen by cones travelling ") +
                             directions[i] + " (mode anisotropic)"));
   }
+  info.outputs.push_back(filtered_output(
+      contracts::kFacingSlots[0],
+      "front-light mode (with facing_neg and the faces): per axis the share of the opacity "
+      "lying across it for cones travelling +X, +Y, +Z (channels x, y, z); the six volumes "
+      "then hold only the light of the surfaces facing each direction"));
+  info.outputs.push_back(filtered_output(contracts::kFacingSlots[1],
+                                         "front-light mode: as facing_pos for -X, -Y, -Z"));
   info.params = {{"mode",
                   graph::ParamType::Enum,
                   1.0,

@@ -27,11 +27,17 @@
 //   coarser level l > 0 among them hold the opacity that filtering a surface voxelized at the
 //   finest level would have given them (along axis k a (|n_k| + (1 - |n_k|) / 2^l); isotropic:
 //   the fraction of fine voxels the surface fills).
+//   Front-light mode (VCT_FRONT_LIGHT 1, anisotropic): volume d holds only the light of the face
+//   groups facing a cone travelling along d, and two more volumes, facing_pos (+X, +Y, +Z in
+//   x, y, z) and facing_neg (-X, -Y, -Z), hold per direction the share of the opacity lying
+//   across it, premultiplied and filtered like the light (vct_fetch_directional reads the
+//   light over that share).
 //
 // BINDINGS (the includer provides them)
 //   Include contracts/voxel_clipmap.glsl first (the clipmap info buffer). Define VCT_VOLUME_SET and
 //   VCT_VOLUME_BINDING (defaults 0 and 1) and VCT_ANISOTROPIC (default 0); the volumes are
-//   one array binding `sampler3D vct_volumes[1 or 6]`, each combined with a sampler that is
+//   one array binding `sampler3D vct_volumes[1, 6, or 8 with VCT_FRONT_LIGHT]`, each combined
+//   with a sampler that is
 //   LINEAR, address mode REPEAT (the toroidal wrap in x and y; z is interpolated here by hand
 //   because levels are stacked in z), whole-mip lods (mipmap mode NEAREST suffices) and no
 //   anisotropic filtering, which has no meaning for explicit lods. contracts::VolumeSampler
@@ -69,7 +75,17 @@
 #ifndef VCT_UNWRAPPED_WINDOWS
 #define VCT_UNWRAPPED_WINDOWS 0
 #endif
-#if VCT_ANISOTROPIC
+// 1: the front-light mode (contracts::front_light_define): vct_volumes holds eight samplers,
+// the six directional volumes, then facing_pos and facing_neg (vct_fetch_directional).
+#ifndef VCT_FRONT_LIGHT
+#define VCT_FRONT_LIGHT 0
+#endif
+#if VCT_FRONT_LIGHT && !VCT_ANISOTROPIC
+#error VCT_FRONT_LIGHT needs VCT_ANISOTROPIC
+#endif
+#if VCT_ANISOTROPIC && VCT_FRONT_LIGHT
+#define VCT_VOLUME_COUNT 8
+#elif VCT_ANISOTROPIC
 #define VCT_VOLUME_COUNT 6
 #else
 #define VCT_VOLUME_COUNT 1
@@ -167,6 +183,24 @@ vec4 vct_fetch(sampler3D volume, vec3 p, int level, int mip) {
   return vct_fetch_layer(volume, vct_texel_coord(p, level, mip), level, mip);
 }
 
+// vct_mix_along mixes the two layers a, b (optical-depth form) at weight w of b; ca and cb are
+// one more channel of the same form (the facing share of the front-light mode), mixed alike
+// into c.
+vec4 vct_mix_along(vec4 a, vec4 b, float ca, float cb, float w, bool forward, out float c) {
+  float tau = mix(a.a, b.a, w);
+  vec4 front = forward ? a : b;
+  vec4 back = forward ? b : a;
+  float front_weight = forward ? 1.0 - w : w;
+  float back_weight = (1.0 - front_weight) * exp(-front.a * front_weight);
+  // Mean radiance of the two parts, each weighted by the optical depth the cone sees of it: a
+  // convex mix of the two texels' own radiance, so no texel's light grows.
+  float seen = front_weight * front.a + back_weight * back.a;
+  c = 0.0;
+  if (!(seen > 1e-8)) return vec4(0.0, 0.0, 0.0, tau);
+  c = (front_weight * (forward ? ca : cb) + back_weight * (forward ? cb : ca)) * (tau / seen);
+  return vec4((front_weight * front.rgb + back_weight * back.rgb) * (tau / seen), tau);
+}
+
 // A volume as a cone travelling along `axis` (0, 1, 2) sees it at p, in the form that adds
 // along a ray (optical depth; contracts/vct_volume_encoding.glsl explains why): the two layers
 // of texels that straddle p along the travel, each filtered across it in premultiplied
@@ -192,25 +226,88 @@ vec4 vct_fetch_along(sampler3D volume, vec3 p, int level, int mip, int axis, boo
   vec3 t1 = texel;
   t1[axis] = first + 1.5;
   vec4 b = vct_optical_depth(vct_fetch_layer(volume, t1, level, mip));
-  float tau = mix(a.a, b.a, w);
-  vec4 front = forward ? a : b;
-  vec4 back = forward ? b : a;
-  float front_weight = forward ? 1.0 - w : w;
-  float back_weight = (1.0 - front_weight) * exp(-front.a * front_weight);
-  // Mean radiance of the two parts, each weighted by the optical depth the cone sees of it: a
-  // convex mix of the two texels' own radiance, so no texel's light grows.
-  float seen = front_weight * front.a + back_weight * back.a;
-  if (!(seen > 1e-8)) return vec4(0.0, 0.0, 0.0, tau);
-  return vec4((front_weight * front.rgb + back_weight * back.rgb) * (tau / seen), tau);
+  float unused;
+  return vct_mix_along(a, b, 0.0, 0.0, w, forward, unused);
 }
+
+#if VCT_FRONT_LIGHT
+// vct_fetch_along for the front-light mode: the light of `volume` and, in `share`, channel
+// `axis` of its facing volume (the share of the opacity lying across the axis, premultiplied
+// like the light), in the same optical-depth form and mixed alike.
+vec4 vct_fetch_along_front(sampler3D volume, sampler3D facing, vec3 p, int level, int mip,
+                           int axis, bool forward, out float share) {
+  vec3 texel = vct_texel_coord(p, level, mip);
+  float along = texel[axis] - 0.5;
+  float first = floor(along);
+  float w = along - first;
+  vec3 t0 = texel;
+  t0[axis] = first + 0.5;
+  vec4 la = vct_fetch_layer(volume, t0, level, mip);
+  vec4 a = vct_optical_depth(la);
+  float ca = vct_optical_depth(vec4(vct_fetch_layer(facing, t0, level, mip)[axis], 0.0, 0.0, la.a)).x;
+  if (!(w > 0.0)) {
+    share = ca;
+    return a;
+  }
+  vec3 t1 = texel;
+  t1[axis] = first + 1.5;
+  vec4 lb = vct_fetch_layer(volume, t1, level, mip);
+  vec4 b = vct_optical_depth(lb);
+  float cb = vct_optical_depth(vec4(vct_fetch_layer(facing, t1, level, mip)[axis], 0.0, 0.0, lb.a)).x;
+  return vct_mix_along(a, b, ca, cb, w, forward, share);
+}
+#endif
 
 // A volume read by a cone travelling along dir: the volumes of its three axes weighted dir^2
 // (they sum to 1, so a uniform medium is returned unchanged; docs/vct.md). Anisotropic: the
 // axis's volume for the sign of dir along it; isotropic: the one volume along every axis.
+//   Front light (VCT_FRONT_LIGHT): each axis's volume holds only the light of the surfaces facing
+// its direction of travel, and its facing share the part of the opacity that lies across it;
+// the cone reads the three axes' light over their shares, sum w_k light_k / sum w_k share_k,
+// at the three axes' optical depth. A plane then shows its full radiance to every cone in
+// front of it, whatever its tilt to the axes, and nothing to cones behind it; a voxel's dark
+// surfaces across the axis take their part of what it shows.
 vec4 vct_fetch_directional(vec3 p, vec3 dir, int level, int mip) {
   vec3 w = dir * dir;
   vec4 sum = vec4(0.0);
-#if VCT_ANISOTROPIC
+#if VCT_FRONT_LIGHT
+  // The light and shares weighted |dir_k| (the projected area of a face across axis k), the
+  // optical depth dir_k^2 as in the other modes.
+  vec3 projected = abs(dir);
+  vec3 light = vec3(0.0);
+  float shares = 0.0, share;
+  vec4 v;
+  if (w.x > 0.0) {
+    v = dir.x >= 0.0 ? vct_fetch_along_front(vct_volumes[0], vct_volumes[6], p, level, mip, 0,
+                                             true, share)
+                     : vct_fetch_along_front(vct_volumes[1], vct_volumes[7], p, level, mip, 0,
+                                             false, share);
+    sum.a += w.x * v.a;
+    light += projected.x * v.rgb;
+    shares += projected.x * share;
+  }
+  if (w.y > 0.0) {
+    v = dir.y >= 0.0 ? vct_fetch_along_front(vct_volumes[2], vct_volumes[6], p, level, mip, 1,
+                                             true, share)
+                     : vct_fetch_along_front(vct_volumes[3], vct_volumes[7], p, level, mip, 1,
+                                             false, share);
+    sum.a += w.y * v.a;
+    light += projected.y * v.rgb;
+    shares += projected.y * share;
+  }
+  if (w.z > 0.0) {
+    v = dir.z >= 0.0 ? vct_fetch_along_front(vct_volumes[4], vct_volumes[6], p, level, mip, 2,
+                                             true, share)
+                     : vct_fetch_along_front(vct_volumes[5], vct_volumes[7], p, level, mip, 2,
+                                             false, share);
+    sum.a += w.z * v.a;
+    light += projected.z * v.rgb;
+    shares += projected.z * share;
+  }
+  // Radiance light / shares, returned in the optical-depth form of sum.a.
+  if (!(shares > 1e-8)) return vec4(0.0, 0.0, 0.0, sum.a);
+  return vec4(light * (sum.a / (VCT_MAX_OPTICAL_DEPTH * shares)), sum.a);
+#elif VCT_ANISOTROPIC
   if (w.x > 0.0) {
     sum += w.x * (dir.x >= 0.0 ? vct_fetch_along(vct_volumes[0], p, level, mip, 0, true)
                                : vct_fetch_along(vct_volumes[1], p, level, mip, 0, false));
@@ -263,7 +360,8 @@ vec4 vct_fetch_lod(vec3 p, vec3 dir, int k, int finest) {
   int mip = k - level;
   if (!voxel_level_valid(level)) return vec4(0.0);
   vec4 v = vct_fetch_directional(p, dir, level, mip);
-#ifdef VCT_FACING_NORMALS
+#if defined(VCT_FACING_NORMALS) && !VCT_FRONT_LIGHT
+  // (Front light needs no test: its volumes hold no light seen from behind.)
   // Only samples that carry light need the normals (most of a cone's samples are empty space).
   if (mip == 0 && level == finest && any(greaterThan(v.rgb, vec3(0.0)))) {
     v.rgb *= vct_facing(vct_fetch(VCT_FACING_NORMALS, p, level, 0), dir);

@@ -12,6 +12,11 @@
 //   STAGE_MIP: mip m of every level from mip m-1 of the same level (texel t <- 2t + {0,1}^3).
 // Isotropic: box filter of the 8 children. Anisotropic (ANISOTROPIC=1): per direction, the
 // front-to-back composite of each child pair along the axis, averaged over the 4 columns.
+// FRONT_LIGHT (anisotropic, with the faces): each directional volume holds only the light of the
+// face groups facing its direction of travel, and the two facing volumes (facing_pos: +X, +Y,
+// +Z in channels x, y, z; facing_neg: -X, -Y, -Z) the share of the opacity lying across it,
+// premultiplied and composited like the light (front_light; contracts/cone_trace.glsl reads
+// the light over that share).
 // NaN/Inf and out-of-range values are scrubbed when read. The filter works on, and stores,
 // premultiplied radiance and opacity (contracts/vct_volume_encoding.glsl).
 #include "lib/common.glsl"
@@ -60,6 +65,32 @@ layout(set = 0, binding = 10, rgba16f) uniform image3D src4;
 layout(set = 0, binding = 11, rgba16f) uniform image3D dst4;
 layout(set = 0, binding = 12, rgba16f) uniform image3D src5;
 layout(set = 0, binding = 13, rgba16f) uniform image3D dst5;
+#endif
+
+#ifndef FRONT_LIGHT
+#define FRONT_LIGHT 0
+#endif
+#if FRONT_LIGHT
+#if !(ANISOTROPIC && FACE_FACING)
+#error FRONT_LIGHT needs the six directional volumes and the voxels' faces
+#endif
+layout(set = 0, binding = 17, rgba16f) uniform image3D src_facing_pos;
+layout(set = 0, binding = 18, rgba16f) uniform image3D dst_facing_pos;
+layout(set = 0, binding = 19, rgba16f) uniform image3D src_facing_neg;
+layout(set = 0, binding = 20, rgba16f) uniform image3D dst_facing_neg;
+
+// Volume `volume`'s facing share (premultiplied) at a source texel.
+float load_facing(int volume, ivec3 texel) {
+  vec4 v = (volume & 1) == 0 ? imageLoad(src_facing_pos, texel) : imageLoad(src_facing_neg, texel);
+  float c = v[volume / 2];
+  return isnan(c) || isinf(c) ? 0.0 : clamp(c, 0.0, 1.0);
+}
+
+// The six volumes' facing shares, by volume index, into the two facing volumes.
+void store_facing(ivec3 texel, float facing[6]) {
+  imageStore(dst_facing_pos, texel, vec4(facing[0], facing[2], facing[4], 0.0));
+  imageStore(dst_facing_neg, texel, vec4(facing[1], facing[3], facing[5], 0.0));
+}
 #endif
 
 layout(push_constant) uniform Push {
@@ -194,13 +225,52 @@ float directional_light(OwnFaces f, int volume) {
   float footprint = max(towards, away) + edge;
   return footprint > 1e-6 ? shown / footprint : 0.0;
 }
+
+#if FRONT_LIGHT
+// The front-light form of directional_light: (light, facing share) relative to the voxel's
+// mean radiance and opacity. Only the groups facing the cone (n_g.t < 0) send light, each
+// its own over its projected area; the share is the part of the voxel's footprint that lies
+// across the axis, max(T, A) / (max(T, A) + E) with T, A, E as in directional_light. A cone
+// reading the three axes' light over their shares (contracts/cone_trace.glsl) sees a plane's
+// full radiance from any direction in front of it, through every mip and level, and none from
+// behind: the edge-on light directional_light keeps is what let cones rising from below read
+// sunlit floors and ledges at coarse mips (docs/error-budget.md, thirty-seventh round).
+vec2 front_light(OwnFaces f, int volume) {
+  if (f.count == 0) return vec2(1.0);
+  int axis = volume / 2;
+  float travel = (volume & 1) == 0 ? 1.0 : -1.0;
+  float towards = 0.0, away = 0.0, edge = 0.0, shown = 0.0;
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    float s = f.area[g];
+    if (s <= 0.0) continue;
+    float c = f.normals[g][axis] * travel;
+    float projected = abs(c);
+    if (c < 0.0) {
+      towards += s * projected;
+      shown += f.light[g] * projected;
+    } else {
+      away += s * projected;
+    }
+    edge += s * (1.0 - projected);
+  }
+  float across = max(towards, away);
+  float footprint = across + edge;
+  return footprint > 1e-6 ? vec2(shown, across) / footprint : vec2(0.0);
+}
+#endif
 #endif
 
 // The filtered value for `volume` from its 8 children's texels, ordered x fastest (child i
 // has offset (i & 1, (i >> 1) & 1, (i >> 2) & 1)).
-vec4 filter_children(int volume, ivec3 child[8]) {
+// FRONT_LIGHT: `facing` is the volume's facing share composited alike.
+vec4 filter_children(int volume, ivec3 child[8], out float facing) {
+  facing = 0.0;
   vec4 c[8];
   for (int i = 0; i < 8; ++i) c[i] = load_src(volume, child[i]);
+#if FRONT_LIGHT
+  float f[8];
+  for (int i = 0; i < 8; ++i) f[i] = load_facing(volume, child[i]);
+#endif
 #if ANISOTROPIC
   // Volume 2k+s looks along axis k, s = 0 positive (lower coordinate in front), 1 negative.
   int axis = volume / 2;
@@ -212,7 +282,12 @@ vec4 filter_children(int volume, ivec3 child[8]) {
     vec4 lower = c[i];
     vec4 upper = c[i + stride];
     sum += positive ? over(lower, upper) : over(upper, lower);
+#if FRONT_LIGHT
+    float f_lower = f[i], f_upper = f[i + stride];
+    facing += positive ? f_lower + (1.0 - lower.a) * f_upper : f_upper + (1.0 - upper.a) * f_lower;
+#endif
   }
+  facing *= 0.25;
   return sum * 0.25;
 #else
   vec4 sum = vec4(0.0);
@@ -265,7 +340,11 @@ void main() {
         ivec3 offset = ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
         child[i] = voxel_texel(first + offset, level - 1);
       }
-      for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, filter_children(v, child));
+      float facing[6];
+      for (int v = 0; v < VOLUMES; ++v) store_dst(v, texel, filter_children(v, child, facing[v]));
+#if FRONT_LIGHT
+      store_facing(texel, facing);
+#endif
     } else {
       // The voxel's own injected light, sent (given its faces) the ways its surfaces face;
       // every composite above is built from these.
@@ -278,16 +357,29 @@ void main() {
 #if FACE_FACING && ANISOTROPIC
       OwnFaces faces;
       faces.count = 0;
+#if FRONT_LIGHT
+      // Unlit voxels too: their share of the footprint darkens what is read through them.
+      if (injected.a > 0.0) faces = own_faces(texel);
+      float facing[6];
+#else
       if (lit) faces = own_faces(texel);
+#endif
 #endif
       for (int v = 0; v < VOLUMES; ++v) {
         float a = injected.a * coverage[v / 2];
         vec3 rgb = injected.rgb;
-#if FACE_FACING && ANISOTROPIC
+#if FRONT_LIGHT
+        vec2 front = front_light(faces, v);
+        rgb *= front.x;
+        facing[v] = front.y * a;
+#elif FACE_FACING && ANISOTROPIC
         if (lit) rgb *= directional_light(faces, v);
 #endif
         store_dst(v, texel, vec4(rgb * a, a));
       }
+#if FRONT_LIGHT
+      store_facing(texel, facing);
+#endif
     }
     return;
   }
@@ -301,5 +393,9 @@ void main() {
     ivec3 c = local * 2 + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
     child[i] = ivec3(c.xy, c.z + level * rs);
   }
-  for (int v = 0; v < VOLUMES; ++v) store_dst(v, id, filter_children(v, child));
+  float facing[6];
+  for (int v = 0; v < VOLUMES; ++v) store_dst(v, id, filter_children(v, child, facing[v]));
+#if FRONT_LIGHT
+  store_facing(id, facing);
+#endif
 }

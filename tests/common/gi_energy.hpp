@@ -76,6 +76,10 @@ struct LitSquare {
   // The receiver `height` under the square instead, facing up at its unlit underside, in the
   // square's shadow: no light reaches it in one bounce (the camera then looks down at it).
   bool under = false;
+  // With `under`: the receiver this far (m) along x from under the square's centre, so that
+  // beyond the square's edge it looks up at the unlit underside obliquely, through the sideways
+  // directional volumes (still no light reaches it in one bounce; it is lit directly).
+  double beside = 0.0;
   // Scene units per metre: 1000 builds it in millimetres. The closed form does not change, and
   // neither may the rendering (nothing in the renderer may assume metres).
   double units_per_metre = 1.0;
@@ -251,9 +255,15 @@ struct VoxelGiSetup {
 
 // graphs/vct.json; diffuse_cones 0 keeps the graph's value.
 VoxelGiSetup vct_gi_setup(uint32_t voxel_resolution, int diffuse_cones = 0);
+// graphs/vct_front_light.json (vct.filter's front-light mode), as vct_gi_setup.
+VoxelGiSetup vct_front_light_gi_setup(uint32_t voxel_resolution, int diffuse_cones = 0);
 // graphs/dvs.json with `bounces` voxel bounces; diffuse_cones (0: the graph's values) applies
 // to the final gather and to the bounces.
 VoxelGiSetup dvs_gi_setup(uint32_t voxel_resolution, int bounces, int diffuse_cones = 0);
+
+// graphs/dvs_front_light.json (vct.filter's front-light mode), as dvs_gi_setup.
+VoxelGiSetup dvs_front_light_gi_setup(uint32_t voxel_resolution, int bounces,
+                                      int diffuse_cones = 0);
 
 // graphs/lpv.json: one volume of R^3 cells, `iterations` propagation steps (0: the graph's).
 VoxelGiSetup lpv_gi_setup(uint32_t voxel_resolution, int iterations = 0);
@@ -355,6 +365,17 @@ struct UndersideCase {
 };
 inline constexpr UndersideCase kUndersideCases[] = {{0.02, 0.05}, {0.03, 0.05}, {0.5, 0.10}};
 void expect_unlit_underside_sends_nothing(const VoxelGiSetup& gi, SquareLight light);
+// The receiver under the square's level and beside it (LitSquare::beside), under a directional
+// light: below fraction of the lit side's closed form at the same height. (vct.json and dvs.json
+// read 0.028-0.045 of it at 32^3 and 64^3, the lit top through the sideways volumes; the
+// front-light mode 0.)
+struct BesideCase {
+  double height;    // metres under the square
+  double beside;    // metres along x from under its centre (the square's half side is 0.5)
+  double fraction;  // of the lit side's closed form at `height`
+};
+inline constexpr BesideCase kBesideCases[] = {{0.25, 0.75, 0.01}, {0.5, 1.0, 0.01}};
+void expect_unlit_underside_sends_nothing_sideways(const VoxelGiSetup& gi);
 // The same for the closed box against `radiosity`.
 void expect_lit_box_matches_radiosity(const VoxelGiSetup& gi, const BoxRadiosity& radiosity,
                                       double tolerance = kAnalyticTolerance);

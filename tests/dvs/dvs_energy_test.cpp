@@ -60,6 +60,22 @@ INSTANTIATE_TEST_SUITE_P(Voxels, DvsAnalyticTest, ::testing::Values(32u, 64u),
                            return voxel_resolution_name(param_info.param);
                          });
 
+// vct.filter's front-light mode through the voxel bounces (graphs/dvs_front_light.json): the
+// closed box bounce by bounce, and a receiver beside and below a lit square, which looks up at
+// its unlit underside through the sideways volumes.
+class DvsFrontLightTest : public GpuTest {};
+
+TEST_F(DvsFrontLightTest, ClosedBoxUnderAPointLightPerBounce) {
+  const BoxRadiosity radiosity(12, 3);
+  for (int bounces = 0; bounces <= 2; ++bounces) {
+    expect_lit_box_matches_radiosity(dvs_front_light_gi_setup(32u, bounces), radiosity, 0.1);
+  }
+}
+
+TEST_F(DvsFrontLightTest, ReceiverBesideAndBelowASquareGetsNoLightFromIt) {
+  expect_unlit_underside_sends_nothing_sideways(dvs_front_light_gi_setup(32u, 1));
+}
+
 // Nothing may assume metres: the same square modelled in millimetres gets the same light
 // (vct_energy_test.cpp, VctSceneUnitsTest).
 class DvsSceneUnitsTest : public GpuTest {};
@@ -115,6 +131,43 @@ std::string energy_bound_name(
          voxel_resolution_name(std::get<1>(param_info.param)) + "_cones" +
          std::to_string(std::get<2>(param_info.param));
 }
+
+// The same bounds in the front-light mode, which reads light over the facing shares (a
+// division) in every bounce and the gather: 32^3 with the most cones.
+class DvsFrontLightEnergyBoundTest : public GpuTest,
+                                     public ::testing::WithParamInterface<size_t> {};
+
+TEST_P(DvsFrontLightEnergyBoundTest, EveryBounceStaysWithinThePathTracer) {
+  const EnergyBoundScene bound_scene = energy_bound_scenes().at(GetParam());
+  const scene::Scene scene = bound_scene.make();
+  double previous = 0.0, previous_reference = 0.0, previous_error = 0.0;
+  for (int k = 0; k <= kMaxVoxelBounces; ++k) {
+    const VoxelGiSetup gi = dvs_front_light_gi_setup(32u, k, 16);
+    const PathTracedMean reference = path_traced_mean_indirect(
+        scene, kEnergyBoundImageSize, gi.indirect_bounces, kEnergyBoundSamplesPerPixel);
+    const double rendered = render_mean_indirect(gi, scene, kEnergyBoundImageSize);
+    const std::string label = std::string(bound_scene.name) + ", " + gi.label;
+    expect_within_energy_bound(label, rendered, reference, bound_scene.tolerance);
+    if (k > 0) {
+      const double gain = rendered - previous;
+      const double reference_gain = reference.luminance - previous_reference;
+      const double noise = 2.0 * std::hypot(reference.standard_error, previous_error);
+      std::printf("[bounce gain] %s: voxel bounce %d adds %.5f, path tracer %.5f (+- %.5f)\n",
+                  label.c_str(), k, gain, reference_gain, noise);
+      EXPECT_LE(gain, (1.0 + bound_scene.feedback_tolerance) * reference_gain + noise) << label;
+      EXPECT_GE(gain, (1.0 - bound_scene.feedback_tolerance) * reference_gain - noise) << label;
+    }
+    previous = rendered;
+    previous_reference = reference.luminance;
+    previous_error = reference.standard_error;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Voxels, DvsFrontLightEnergyBoundTest,
+                         ::testing::Range(size_t{0}, energy_bound_scenes().size()),
+                         [](const auto& param_info) {
+                           return std::string(energy_bound_scenes().at(param_info.param).name);
+                         });
 
 // The fewest and the most cones at 32^3, and 64^3 with the fewest cones: the voxel GI's excess
 // has grown with the resolution and shrunk with more cones (docs/error-budget.md), so that is

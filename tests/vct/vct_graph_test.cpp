@@ -108,6 +108,34 @@ TEST_F(VctGraphTest, WhiteFurnaceWithAMetalFloorKeepsLe) {
   EXPECT_LT(error, 0.05f);
 }
 
+// Both furnaces in vct.filter's front-light mode (graphs/vct_front_light.json), whose cones read
+// the light over the facing shares: every surface shows Le from the front, so the division must
+// return Le, and the plain furnace never more. With the metal floor (the specular pass in this
+// mode) both modes read more than Le, 1.0102 here and 1.0139 through vct.json, the walls as much
+// as the floor (docs/error-budget.md, "What is left"), so that case is held to the 5% of the
+// landed mode's test.
+TEST_F(VctGraphTest, FrontLightWhiteFurnacesKeepLe) {
+  const float le = 0.5f;
+  for (bool metal_floor : {false, true}) {
+    RenderSetup setup = vct_setup(furnace_box(le, metal_floor));
+    setup.graph = "graphs/vct_front_light.json";
+    RenderHarness harness(setup);
+    ASSERT_EQ(harness.compiled().find_pass("cone_trace_specular") != nullptr, metal_floor);
+    harness.render();
+    const RenderedImage indirect = harness.output("indirect");
+    expect_finite_non_negative(indirect, "indirect");
+    const glm::vec3 mean = mean_rgb(indirect);
+    std::printf("front light, white furnace%s: mean indirect / Le = %.4f\n",
+                metal_floor ? " with a metal floor" : "", mean.g / le);
+    if (metal_floor) {
+      EXPECT_LT(std::abs(mean.g / le - 1.0f), 0.05f);
+    } else {
+      EXPECT_LT(std::abs(mean.g / le - 1.0f), 0.06f);
+      EXPECT_LE(mean.g, le * 1.001f) << "the gather creates energy";
+    }
+  }
+}
+
 // Two rooms with a partition one voxel thick; the light is in room 1 only (its shadow map
 // keeps direct light out of room 2). Whatever indirect light room 2 receives leaked through
 // the partition's voxels (a voxel holds both faces, so its radiance is seen from both sides)

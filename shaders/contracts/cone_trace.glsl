@@ -258,6 +258,27 @@ vec4 vct_fetch_along_front(sampler3D volume, sampler3D facing, vec3 p, int level
 }
 #endif
 
+#if VCT_FRONT_LIGHT
+// One axis of the front-light read (vct_fetch_directional): the volume of dir's sign along
+// `axis` (`positive` or `negative`) and its facing share, added to `light` and `shares` with
+// weight |dir_k| and to the optical depth `tau` with weight dir_k^2. (The samplers come in as
+// arguments so that every array index stays constant.)
+void vct_add_axis_front(sampler3D positive, sampler3D negative, vec3 p, vec3 dir, int level,
+                        int mip, int axis, inout vec3 light, inout float shares,
+                        inout float tau) {
+  float d = dir[axis];
+  if (!(d * d > 0.0)) return;
+  float share;
+  vec4 v = d >= 0.0 ? vct_fetch_along_front(positive, vct_volumes[6], p, level, mip, axis, true,
+                                            share)
+                    : vct_fetch_along_front(negative, vct_volumes[7], p, level, mip, axis, false,
+                                            share);
+  tau += d * d * v.a;
+  light += abs(d) * v.rgb;
+  shares += abs(d) * share;
+}
+#endif
+
 // A volume read by a cone travelling along dir: the volumes of its three axes weighted dir^2
 // (they sum to 1, so a uniform medium is returned unchanged; docs/vct.md). Anisotropic: the
 // axis's volume for the sign of dir along it; isotropic: the one volume along every axis.
@@ -273,37 +294,11 @@ vec4 vct_fetch_directional(vec3 p, vec3 dir, int level, int mip) {
 #if VCT_FRONT_LIGHT
   // The light and shares weighted |dir_k| (the projected area of a face across axis k), the
   // optical depth dir_k^2 as in the other modes.
-  vec3 projected = abs(dir);
   vec3 light = vec3(0.0);
-  float shares = 0.0, share;
-  vec4 v;
-  if (w.x > 0.0) {
-    v = dir.x >= 0.0 ? vct_fetch_along_front(vct_volumes[0], vct_volumes[6], p, level, mip, 0,
-                                             true, share)
-                     : vct_fetch_along_front(vct_volumes[1], vct_volumes[7], p, level, mip, 0,
-                                             false, share);
-    sum.a += w.x * v.a;
-    light += projected.x * v.rgb;
-    shares += projected.x * share;
-  }
-  if (w.y > 0.0) {
-    v = dir.y >= 0.0 ? vct_fetch_along_front(vct_volumes[2], vct_volumes[6], p, level, mip, 1,
-                                             true, share)
-                     : vct_fetch_along_front(vct_volumes[3], vct_volumes[7], p, level, mip, 1,
-                                             false, share);
-    sum.a += w.y * v.a;
-    light += projected.y * v.rgb;
-    shares += projected.y * share;
-  }
-  if (w.z > 0.0) {
-    v = dir.z >= 0.0 ? vct_fetch_along_front(vct_volumes[4], vct_volumes[6], p, level, mip, 2,
-                                             true, share)
-                     : vct_fetch_along_front(vct_volumes[5], vct_volumes[7], p, level, mip, 2,
-                                             false, share);
-    sum.a += w.z * v.a;
-    light += projected.z * v.rgb;
-    shares += projected.z * share;
-  }
+  float shares = 0.0;
+  vct_add_axis_front(vct_volumes[0], vct_volumes[1], p, dir, level, mip, 0, light, shares, sum.a);
+  vct_add_axis_front(vct_volumes[2], vct_volumes[3], p, dir, level, mip, 1, light, shares, sum.a);
+  vct_add_axis_front(vct_volumes[4], vct_volumes[5], p, dir, level, mip, 2, light, shares, sum.a);
   // Radiance light / shares, returned in the optical-depth form of sum.a.
   if (!(shares > 1e-8)) return vec4(0.0, 0.0, 0.0, sum.a);
   return vec4(light * (sum.a / (VCT_MAX_OPTICAL_DEPTH * shares)), sum.a);

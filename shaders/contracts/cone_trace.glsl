@@ -201,6 +201,19 @@ vec4 vct_mix_along(vec4 a, vec4 b, float ca, float cb, float w, bool forward, ou
   return vec4((front_weight * front.rgb + back_weight * back.rgb) * (tau / seen), tau);
 }
 
+// The two layers of texels that straddle p along `axis` (texel coordinates t0, t1 as
+// vct_fetch_layer takes them, t0 the lower) and the weight of t1, for vct_fetch_along.
+float vct_along_layers(vec3 p, int level, int mip, int axis, out vec3 t0, out vec3 t1) {
+  vec3 texel = vct_texel_coord(p, level, mip);
+  float along = texel[axis] - 0.5;
+  float first = floor(along);
+  t0 = texel;
+  t0[axis] = first + 0.5;
+  t1 = texel;
+  t1[axis] = first + 1.5;
+  return along - first;
+}
+
 // A volume as a cone travelling along `axis` (0, 1, 2) sees it at p, in the form that adds
 // along a ray (optical depth; contracts/vct_volume_encoding.glsl explains why): the two layers
 // of texels that straddle p along the travel, each filtered across it in premultiplied
@@ -215,16 +228,10 @@ vec4 vct_mix_along(vec4 a, vec4 b, float ca, float cb, float w, bool forward, ou
 // vct_sample_step makes them do, lost 2% of a closed box's light; docs/error-budget.md,
 // twenty-seventh round.)
 vec4 vct_fetch_along(sampler3D volume, vec3 p, int level, int mip, int axis, bool forward) {
-  vec3 texel = vct_texel_coord(p, level, mip);
-  float along = texel[axis] - 0.5;
-  float first = floor(along);
-  float w = along - first;
-  vec3 t0 = texel;
-  t0[axis] = first + 0.5;
+  vec3 t0, t1;
+  float w = vct_along_layers(p, level, mip, axis, t0, t1);
   vec4 a = vct_optical_depth(vct_fetch_layer(volume, t0, level, mip));
   if (!(w > 0.0)) return a;
-  vec3 t1 = texel;
-  t1[axis] = first + 1.5;
   vec4 b = vct_optical_depth(vct_fetch_layer(volume, t1, level, mip));
   float unused;
   return vct_mix_along(a, b, 0.0, 0.0, w, forward, unused);
@@ -236,12 +243,8 @@ vec4 vct_fetch_along(sampler3D volume, vec3 p, int level, int mip, int axis, boo
 // like the light), in the same optical-depth form and mixed alike.
 vec4 vct_fetch_along_front(sampler3D volume, sampler3D facing, vec3 p, int level, int mip,
                            int axis, bool forward, out float share) {
-  vec3 texel = vct_texel_coord(p, level, mip);
-  float along = texel[axis] - 0.5;
-  float first = floor(along);
-  float w = along - first;
-  vec3 t0 = texel;
-  t0[axis] = first + 0.5;
+  vec3 t0, t1;
+  float w = vct_along_layers(p, level, mip, axis, t0, t1);
   vec4 la = vct_fetch_layer(volume, t0, level, mip);
   vec4 a = vct_optical_depth(la);
   float ca = vct_optical_depth(vec4(vct_fetch_layer(facing, t0, level, mip)[axis], 0.0, 0.0, la.a)).x;
@@ -249,8 +252,6 @@ vec4 vct_fetch_along_front(sampler3D volume, sampler3D facing, vec3 p, int level
     share = ca;
     return a;
   }
-  vec3 t1 = texel;
-  t1[axis] = first + 1.5;
   vec4 lb = vct_fetch_layer(volume, t1, level, mip);
   vec4 b = vct_optical_depth(lb);
   float cb = vct_optical_depth(vec4(vct_fetch_layer(facing, t1, level, mip)[axis], 0.0, 0.0, lb.a)).x;

@@ -314,6 +314,26 @@ TEST_F(VoxgiCli, GraphCheckRefusesHalfResolutionWithoutHalfRes) {
                                 "field 'params.resolution': 'half' needs"}));
 }
 
+// The front-light graphs compile; a filter given one facing volume of the two is refused by
+// `graph check`, naming the pass and the slot.
+TEST_F(VoxgiCli, GraphCheckRefusesHalfTheFrontLightMode) {
+  for (const char* graph : {"vct_front_light.json", "dvs_front_light.json"}) {
+    write_text(dir_ / graph, shipped_text(graph));
+    const ProcessResult ok = voxgi({"graph", "check", graph});
+    EXPECT_TRUE(exited_with(ok, 0)) << graph << ": " << ok.describe();
+  }
+  std::string text = shipped_text("vct_front_light.json");
+  const std::string both = "\"facing_pos\": \"vct.facing_pos\", \"facing_neg\": \"vct.facing_neg\"";
+  ASSERT_NE(text.find(both), std::string::npos) << "graphs/vct_front_light.json changed";
+  text.replace(text.find(both), both.size(), "\"facing_pos\": \"vct.facing_pos\"");
+  write_text(dir_ / "half-front.json", text);
+  const ProcessResult r = voxgi({"graph", "check", "half-front.json"});
+  EXPECT_TRUE(exited_with(r, kError));
+  EXPECT_TRUE(stderr_has(r, {"pass 'filter'", "facing_neg",
+                             "the front-light mode needs both facing_pos and facing_neg bound"}))
+      << r.describe();
+}
+
 // ---- --set --------------------------------------------------------------------------------
 
 // --set keys are checked against the graph, in the compiler, so they fail like a graph error.

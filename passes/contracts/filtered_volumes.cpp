@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace voxgi::contracts {
 
@@ -79,16 +80,39 @@ uint32_t volume_array_size(bool anisotropic, bool front_light) {
   return front_light ? 8u : 6u;
 }
 
-graph::SlotSpec facing_input(const char* slot) {
-  return {slot,
+graph::SlotSpec filtered_volume_input(const char* name, std::string doc) {
+  return {name,
           graph::kinds(graph::ResourceKind::Clipmap),
           graph::Access::Sampled,
           graph::kStageCompute,
           {VK_FORMAT_R16G16B16A16_SFLOAT},
           true,
-          std::string("facing volume from vct.filter (front-light mode): per axis the share of "
-                      "the opacity facing across it, for cones travelling ") +
-              (std::string_view(slot) == kFacingSlots[0] ? "+X, +Y, +Z" : "-X, -Y, -Z")};
+          std::move(doc)};
+}
+
+graph::SlotSpec facing_input(const char* slot) {
+  return filtered_volume_input(
+      slot, std::string("facing volume from vct.filter (front-light mode): per axis the share of "
+                        "the opacity facing across it, for cones travelling ") +
+                (std::string_view(slot) == kFacingSlots[0] ? "+X, +Y, +Z" : "-X, -Y, -Z"));
+}
+
+std::vector<VkDescriptorImageInfo> filtered_volume_images(graph::PassContext& ctx, bool anisotropic,
+                                                          bool front_light, VkSampler sampler) {
+  std::vector<VkDescriptorImageInfo> images;
+  auto add = [&](const char* slot) {
+    const graph::BoundResource& v = ctx.resource(slot);
+    images.push_back({sampler, v.view, v.layout});
+  };
+  if (!anisotropic) {
+    add(kFilteredSlot);
+    return images;
+  }
+  for (const char* slot : kDirectionalSlots) add(slot);
+  if (front_light) {
+    for (const char* slot : kFacingSlots) add(slot);
+  }
+  return images;
 }
 
 VolumeSampler::VolumeSampler(gpu::Context& context) : context_(context) {

@@ -8,6 +8,8 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "engine/gpu/shader_compiler.hpp"
 #include "engine/graph/pass.hpp"
@@ -61,8 +63,14 @@ void validate_front_light_slots(graph::PassCheck& check);
 // samplers, the six directional volumes followed by facing_pos and facing_neg.
 gpu::ShaderDefine front_light_define(bool front_light);
 uint32_t volume_array_size(bool anisotropic, bool front_light);
-// A reader's optional input slot for facing volume `slot`.
+// A reader's optional input slot for a filtered volume (rgba16f clipmap, sampled in compute),
+// and for facing volume `slot`.
+graph::SlotSpec filtered_volume_input(const char* name, std::string doc);
 graph::SlotSpec facing_input(const char* slot);
+// The volume array in cone_trace.glsl's order, each with `sampler`: the isotropic volume, or
+// the six directional ones followed (front light) by the two facing volumes.
+std::vector<VkDescriptorImageInfo> filtered_volume_images(graph::PassContext& ctx, bool anisotropic,
+                                                          bool front_light, VkSampler sampler);
 
 // The sampler cone_trace.glsl needs for the filtered volumes: linear, whole mips, REPEAT, no
 // anisotropic filtering. Owned by the pass that creates it.

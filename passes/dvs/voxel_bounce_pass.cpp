@@ -90,23 +90,8 @@ class VoxelBouncePass final : public graph::Pass {
 
     gpu::DescriptorWriter writer;
     writer.storage_buffer(0, *ctx.resource("clipmap_info").buffer);
-    std::vector<VkDescriptorImageInfo> volumes;
-    if (anisotropic_) {
-      for (const char* slot : contracts::kDirectionalSlots) {
-        const graph::BoundResource& v = ctx.resource(slot);
-        volumes.push_back({repeat, v.view, v.layout});
-      }
-      if (front_light_) {
-        for (const char* slot : contracts::kFacingSlots) {
-          const graph::BoundResource& v = ctx.resource(slot);
-          volumes.push_back({repeat, v.view, v.layout});
-        }
-      }
-    } else {
-      const graph::BoundResource& v = ctx.resource(contracts::kFilteredSlot);
-      volumes.push_back({repeat, v.view, v.layout});
-    }
-    writer.image_array(1, volumes);
+    writer.image_array(1,
+                       contracts::filtered_volume_images(ctx, anisotropic_, front_light_, repeat));
     const char* inputs[] = {"albedo", "normal", "direct"};
     for (uint32_t i = 0; i < 3; ++i) {
       const graph::BoundResource& r = ctx.resource(inputs[i]);
@@ -147,16 +132,6 @@ class VoxelBouncePass final : public graph::Pass {
   std::unique_ptr<contracts::VolumeSampler> sampler_;
 };
 
-graph::SlotSpec filtered_input(const char* name, std::string doc) {
-  return {name,
-          graph::kinds(ResourceKind::Clipmap),
-          Access::Sampled,
-          graph::kStageCompute,
-          {VK_FORMAT_R16G16B16A16_SFLOAT},
-          true,
-          std::move(doc)};
-}
-
 // One isotropic or six directional volumes, of the voxels' layout.
 void validate_voxel_bounce(graph::PassCheck& check) {
   contracts::check_clipmap_info_size(check);
@@ -192,14 +167,14 @@ void register_voxel_bounce(graph::Registry& registry) {
       "filtered radiance volume; writes direct + albedo/pi * irradiance";
   info.inputs = {
       contracts::clipmap_info_input(),
-      filtered_input(contracts::kFilteredSlot,
-                     "isotropic filtered volume from vct.filter (or bind the six "
-                     "directional volumes)"),
+      contracts::filtered_volume_input(contracts::kFilteredSlot,
+                                       "isotropic filtered volume from vct.filter (or bind the six "
+                                       "directional volumes)"),
   };
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   for (size_t i = 0; i < 6; ++i) {
-    info.inputs.push_back(filtered_input(contracts::kDirectionalSlots[i],
-                                         std::string("directional volume for cones travelling ") +
+    info.inputs.push_back(contracts::filtered_volume_input(
+        contracts::kDirectionalSlots[i], std::string("directional volume for cones travelling ") +
                                              directions[i] + " from vct.filter (anisotropic)"));
   }
   for (const char* slot : contracts::kFacingSlots) {

@@ -188,24 +188,9 @@ class ConeTracePass final : public graph::Pass {
     };
     auto bind_volumes = [&](gpu::DescriptorWriter& writer) {
       writer.storage_buffer(kBindingClipmapInfo, *ctx.resource("clipmap_info").buffer);
-      std::vector<VkDescriptorImageInfo> images;
       const VkSampler repeat = sampler_->handle();
-      if (anisotropic_) {
-        for (const char* slot : contracts::kDirectionalSlots) {
-          const graph::BoundResource& v = ctx.resource(slot);
-          images.push_back({repeat, v.view, v.layout});
-        }
-        if (front_light_) {
-          for (const char* slot : contracts::kFacingSlots) {
-            const graph::BoundResource& v = ctx.resource(slot);
-            images.push_back({repeat, v.view, v.layout});
-          }
-        }
-      } else {
-        const graph::BoundResource& v = ctx.resource(contracts::kFilteredSlot);
-        images.push_back({repeat, v.view, v.layout});
-      }
-      writer.image_array(kBindingVolumes, images);
+      writer.image_array(kBindingVolumes, contracts::filtered_volume_images(ctx, anisotropic_,
+                                                                            front_light_, repeat));
       if (facing_) {
         const graph::BoundResource& n = ctx.resource("voxel_normal");
         writer.sampled_image(kBindingFacing, n.view, n.layout, repeat);
@@ -358,16 +343,6 @@ void validate_cone_trace(graph::PassCheck& check) {
   }
 }
 
-graph::SlotSpec filtered_input(const char* name, std::string doc) {
-  return {name,
-          graph::kinds(graph::ResourceKind::Clipmap),
-          graph::Access::Sampled,
-          graph::kStageCompute,
-          {VK_FORMAT_R16G16B16A16_SFLOAT},
-          true,
-          std::move(doc)};
-}
-
 graph::SlotSpec image_output(const char* name, const char* doc, bool optional,
                              std::vector<VkFormat> formats) {
   return {name,
@@ -382,14 +357,14 @@ graph::SlotSpec image_output(const char* name, const char* doc, bool optional,
 std::vector<graph::SlotSpec> trace_inputs() {
   std::vector<graph::SlotSpec> inputs = {
       contracts::clipmap_info_input(),
-      filtered_input(contracts::kFilteredSlot,
-                     "isotropic filtered volume from vct.filter (or bind the six "
-                     "directional volumes)")};
+      contracts::filtered_volume_input(contracts::kFilteredSlot,
+                                       "isotropic filtered volume from vct.filter (or bind the six "
+                                       "directional volumes)")};
   const char* directions[] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   for (size_t i = 0; i < contracts::kDirectionalSlots.size(); ++i) {
-    inputs.push_back(filtered_input(contracts::kDirectionalSlots[i],
-                                    std::string("directional volume for cones travelling ") +
-                                        directions[i] + " from vct.filter (anisotropic)"));
+    inputs.push_back(contracts::filtered_volume_input(
+        contracts::kDirectionalSlots[i], std::string("directional volume for cones travelling ") +
+                                             directions[i] + " from vct.filter (anisotropic)"));
   }
   for (const char* slot : contracts::kFacingSlots) inputs.push_back(contracts::facing_input(slot));
   for (contracts::GbufferTarget target :

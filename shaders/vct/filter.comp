@@ -188,6 +188,36 @@ OwnFaces own_faces(ivec3 texel) {
   return f;
 }
 
+// A voxel's face groups projected on `volume`'s axis t: the area shares towards a cone
+// travelling along t (n_g.t < 0), away from it, and seen edge-on (the rest of each group's
+// area), with the light the groups towards it show (front) and that plus their edge-on light
+// (shown).
+struct FaceProjection {
+  float towards, away, edge, front, shown;
+};
+
+FaceProjection project_faces(OwnFaces f, int volume) {
+  int axis = volume / 2;
+  float travel = (volume & 1) == 0 ? 1.0 : -1.0;
+  FaceProjection p = FaceProjection(0.0, 0.0, 0.0, 0.0, 0.0);
+  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
+    float s = f.area[g];
+    if (s <= 0.0) continue;
+    float c = f.normals[g][axis] * travel;
+    float projected = abs(c);
+    if (c < 0.0) {
+      p.towards += s * projected;
+      p.front += f.light[g] * projected;
+      p.shown += f.light[g] * projected;
+    } else {
+      p.away += s * projected;
+    }
+    p.edge += s * (1.0 - projected);
+    p.shown += f.light[g] * (1.0 - projected);
+  }
+  return p;
+}
+
 // How bright a voxel that holds its own injected light looks to a cone travelling along
 // `volume`'s axis t, relative to its mean radiance (the injected value): from its face groups'
 // normals n_g, area shares s_g and light shares l_g (OwnFaces). Along t a group shows the
@@ -205,25 +235,9 @@ OwnFaces own_faces(ivec3 texel) {
 // axes at the finest level's mip 0.
 float directional_light(OwnFaces f, int volume) {
   if (f.count == 0) return 1.0;
-  int axis = volume / 2;
-  float travel = (volume & 1) == 0 ? 1.0 : -1.0;
-  float towards = 0.0, away = 0.0, edge = 0.0, shown = 0.0;
-  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-    float s = f.area[g];
-    if (s <= 0.0) continue;
-    float c = f.normals[g][axis] * travel;
-    float projected = abs(c);
-    if (c < 0.0) {
-      towards += s * projected;
-      shown += f.light[g] * projected;
-    } else {
-      away += s * projected;
-    }
-    edge += s * (1.0 - projected);
-    shown += f.light[g] * (1.0 - projected);
-  }
-  float footprint = max(towards, away) + edge;
-  return footprint > 1e-6 ? shown / footprint : 0.0;
+  FaceProjection p = project_faces(f, volume);
+  float footprint = max(p.towards, p.away) + p.edge;
+  return footprint > 1e-6 ? p.shown / footprint : 0.0;
 }
 
 #if FRONT_LIGHT
@@ -237,25 +251,10 @@ float directional_light(OwnFaces f, int volume) {
 // sunlit floors and ledges at coarse mips (docs/error-budget.md, thirty-seventh round).
 vec2 front_light(OwnFaces f, int volume) {
   if (f.count == 0) return vec2(1.0);
-  int axis = volume / 2;
-  float travel = (volume & 1) == 0 ? 1.0 : -1.0;
-  float towards = 0.0, away = 0.0, edge = 0.0, shown = 0.0;
-  for (int g = 0; g < VOXEL_FACE_GROUPS; ++g) {
-    float s = f.area[g];
-    if (s <= 0.0) continue;
-    float c = f.normals[g][axis] * travel;
-    float projected = abs(c);
-    if (c < 0.0) {
-      towards += s * projected;
-      shown += f.light[g] * projected;
-    } else {
-      away += s * projected;
-    }
-    edge += s * (1.0 - projected);
-  }
-  float across = max(towards, away);
-  float footprint = across + edge;
-  return footprint > 1e-6 ? vec2(shown, across) / footprint : vec2(0.0);
+  FaceProjection p = project_faces(f, volume);
+  float across = max(p.towards, p.away);
+  float footprint = across + p.edge;
+  return footprint > 1e-6 ? vec2(p.front, across) / footprint : vec2(0.0);
 }
 #endif
 #endif

@@ -563,34 +563,34 @@ IndirectComparison compare_lit_box(const VoxelGiSetup& gi, const BoxRadiosity& r
 // ---------------------------------------------------------------------------------------------
 // Shared expectations
 
+namespace {
+
+// The receiver of `dark` (under the square) against the closed form for one as far above it:
+// below `fraction` of it.
+void expect_dark_under_the_square(const VoxelGiSetup& gi, const LitSquare& dark, double fraction,
+                                  const char* tag) {
+  const LitSquare above{dark.light, dark.height};
+  const IndirectComparison c = {render_at_every_placement(gi, lit_square_scene(dark), 16),
+                                lit_square_one_bounce_irradiance(above) / pi};
+  std::printf("[%s] %s, %s: %.5f of the lit side's %.5f, ratio %.4f (per placement%s)\n", tag,
+              gi.label.c_str(), dark.label().c_str(), c.mean_ratio() * c.expected, c.expected,
+              c.mean_ratio(), c.ratios().c_str());
+  EXPECT_LT(c.mean_ratio(), fraction) << gi.label << ", " << dark.label();
+}
+
+}  // namespace
+
 void expect_unlit_underside_sends_nothing(const VoxelGiSetup& gi, SquareLight light) {
   for (const auto& [height, fraction] : kUndersideCases) {
-    const LitSquare above{light, height};
-    const LitSquare under{light, height, true};
-    const IndirectComparison c = {render_at_every_placement(gi, lit_square_scene(under), 16),
-                                  lit_square_one_bounce_irradiance(above) / pi};
-    std::printf(
-        "[unlit underside] %s, %s: %.5f of the lit side's %.5f, ratio %.4f (per "
-        "placement%s)\n",
-        gi.label.c_str(), under.label().c_str(), c.mean_ratio() * c.expected, c.expected,
-        c.mean_ratio(), c.ratios().c_str());
-    EXPECT_LT(c.mean_ratio(), fraction) << gi.label << ", " << under.label();
+    expect_dark_under_the_square(gi, LitSquare{light, height, true}, fraction, "unlit underside");
   }
 }
 
 void expect_unlit_underside_sends_nothing_sideways(const VoxelGiSetup& gi) {
   for (const auto& [height, beside, fraction] : kBesideCases) {
-    const LitSquare above{SquareLight::Directional, height};
     LitSquare aside{SquareLight::Directional, height, true};
     aside.beside = beside;
-    const IndirectComparison c = {render_at_every_placement(gi, lit_square_scene(aside), 16),
-                                  lit_square_one_bounce_irradiance(above) / pi};
-    std::printf(
-        "[unlit underside, aside] %s, %s: %.5f of the lit side's %.5f, ratio %.4f (per "
-        "placement%s)\n",
-        gi.label.c_str(), aside.label().c_str(), c.mean_ratio() * c.expected, c.expected,
-        c.mean_ratio(), c.ratios().c_str());
-    EXPECT_LT(c.mean_ratio(), fraction) << gi.label << ", " << aside.label();
+    expect_dark_under_the_square(gi, aside, fraction, "unlit underside, aside");
   }
 }
 

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <tuple>
 
@@ -119,24 +120,28 @@ class VctEnergyBoundTest : public GpuTest,
                            public ::testing::WithParamInterface<std::tuple<size_t, uint32_t>> {};
 
 // One render per cone count: the cone count is a live parameter, so injection and filtering
-// run once and only the gather runs again.
-TEST_P(VctEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
-  const auto [scene_index, resolution] = GetParam();
+// run once and only the gather runs again. setup(0) keeps the graph's cone count.
+void expect_every_cone_count_within_the_bound(
+    size_t scene_index, const std::function<VoxelGiSetup(int diffuse_cones)>& setup) {
   const EnergyBoundScene bound_scene = energy_bound_scenes().at(scene_index);
   const scene::Scene scene = bound_scene.make();
   const PathTracedMean reference =
       path_traced_mean_indirect(scene, kEnergyBoundImageSize, 1, kEnergyBoundSamplesPerPixel);
-  RenderHarness harness(
-      voxel_gi_render_setup(vct_gi_setup(resolution), scene, kEnergyBoundImageSize));
+  RenderHarness harness(voxel_gi_render_setup(setup(0), scene, kEnergyBoundImageSize));
   for (int cones : {4, 9, 16}) {
     harness.executor().set_param("cone_trace.diffuse_cones", std::to_string(cones));
     harness.render();
-    const std::string label =
-        std::string(bound_scene.name) + ", " + vct_gi_setup(resolution, cones).label;
+    const std::string label = std::string(bound_scene.name) + ", " + setup(cones).label;
     const RenderedImage indirect = harness.output("indirect");
     expect_finite_non_negative(indirect, label);
     expect_within_energy_bound(label, mean_luminance(indirect), reference, bound_scene.tolerance);
   }
+}
+
+TEST_P(VctEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
+  const auto [scene_index, resolution] = GetParam();
+  expect_every_cone_count_within_the_bound(
+      scene_index, [&](int cones) { return vct_gi_setup(resolution, cones); });
 }
 
 // The same bound in vct.filter's front-light mode: light read over the facing shares (a
@@ -145,21 +150,8 @@ class VctFrontLightEnergyBoundTest : public GpuTest,
                                      public ::testing::WithParamInterface<size_t> {};
 
 TEST_P(VctFrontLightEnergyBoundTest, IndirectStaysWithinThePathTracedOneBounce) {
-  const EnergyBoundScene bound_scene = energy_bound_scenes().at(GetParam());
-  const scene::Scene scene = bound_scene.make();
-  const PathTracedMean reference =
-      path_traced_mean_indirect(scene, kEnergyBoundImageSize, 1, kEnergyBoundSamplesPerPixel);
-  RenderHarness harness(
-      voxel_gi_render_setup(vct_front_light_gi_setup(32u), scene, kEnergyBoundImageSize));
-  for (int cones : {4, 9, 16}) {
-    harness.executor().set_param("cone_trace.diffuse_cones", std::to_string(cones));
-    harness.render();
-    const std::string label =
-        std::string(bound_scene.name) + ", " + vct_front_light_gi_setup(32u, cones).label;
-    const RenderedImage indirect = harness.output("indirect");
-    expect_finite_non_negative(indirect, label);
-    expect_within_energy_bound(label, mean_luminance(indirect), reference, bound_scene.tolerance);
-  }
+  expect_every_cone_count_within_the_bound(
+      GetParam(), [](int cones) { return vct_front_light_gi_setup(32u, cones); });
 }
 
 INSTANTIATE_TEST_SUITE_P(Voxels, VctFrontLightEnergyBoundTest,

@@ -59,15 +59,13 @@ INSTANTIATE_TEST_SUITE_P(Voxels, VctAnalyticTest, ::testing::Values(32u, 64u),
 // The same cases in vct.filter's front-light mode (graphs/vct_front_light.json), and one it is
 // for: a receiver below the square's level and beside it looks up at the unlit underside
 // through the sideways volumes, which there hold only the light of surfaces facing sideways.
+// The point-lit square is left out: the mode changes the filter and the reads, not the
+// injection, which the landed mode's point-lit squares test.
 class VctFrontLightAnalyticTest : public GpuTest, public ::testing::WithParamInterface<uint32_t> {};
 
 TEST_P(VctFrontLightAnalyticTest, ReceiverOverASquareUnderADirectionalLight) {
   expect_lit_square_matches_closed_form(vct_front_light_gi_setup(GetParam()),
                                         SquareLight::Directional);
-}
-
-TEST_P(VctFrontLightAnalyticTest, ReceiverOverASquareUnderAPointLight) {
-  expect_lit_square_matches_closed_form(vct_front_light_gi_setup(GetParam()), SquareLight::Point);
 }
 
 TEST_P(VctFrontLightAnalyticTest, ReceiverBeforeALitWall) {

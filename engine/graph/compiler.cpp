@@ -747,11 +747,14 @@ class Compiler {
     report_never_sized();
   }
 
+  // Scene features as in `when`, so that a pass can follow a condition that adds another pass
+  // (vct.cone_trace's specular_layer with the specular pass's scene.has_glossy).
   ExpressionEnv param_env() const {
     ExpressionEnv env;
     env.params = graph_.parameters;
+    env.identifiers = options_.scene_features;
     env.identifier_kind = "name";
-    env.identifier_help = "pass parameters may use numbers and ${graph parameters}";
+    env.identifier_help = "pass parameters may use numbers, scene features and ${graph parameters}";
     return env;
   }
 

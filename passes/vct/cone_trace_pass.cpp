@@ -102,6 +102,7 @@ class ConeTracePass final : public graph::Pass {
         {"SHADOW_FORMAT",
          has_shadow_ ? scalar_format_qualifier(ctx.info("shadow").format) : "r16f"}};
     if (facing_) defines.push_back({"HAS_FACING", "1"});
+    if (!specular_ && ctx.flag("specular_layer")) defines.push_back({"SPECULAR_LAYER", "1"});
     defines.push_back(contracts::front_light_define(front_light_));
     const char* volumes_slot =
         anisotropic_ ? contracts::kDirectionalSlots[0] : contracts::kFilteredSlot;
@@ -422,6 +423,17 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
                       "half angle (degrees) of the soft-shadow cone towards the first light "
                       "(output 'shadow'); wider cones give softer shadows",
                       true});
+    params.push_back({"specular_layer",
+                      graph::ParamType::Bool,
+                      0.0,
+                      0.0,
+                      1.0,
+                      {},
+                      "the graph adds vct.cone_trace_specular's light (F L) on every pixel: the "
+                      "diffuse then reflects (1 - F) c_diff, as the direct light does, so that "
+                      "the two together never reflect more than arrives (set it with the "
+                      "specular pass's condition)",
+                      false});
     params.push_back({"ao_falloff",
                       graph::ParamType::Float,
                       0.1,

@@ -4,6 +4,12 @@
 // encoding is the contract's (contracts/gbuffer.glsl).
 
 #include "contracts/gbuffer.glsl"
+#include "lib/brdf.glsl"
+#include "lib/common.glsl"
+
+#ifndef SPECULAR_LAYER
+#define SPECULAR_LAYER 0
+#endif
 
 layout(set = 0, binding = 2) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = 3) uniform sampler2D g_base_color;
@@ -45,9 +51,27 @@ GbufferSample gbuffer_sample(ivec2 pixel) {
   return g;
 }
 
+// The share of the light arriving from the mirror direction that the surface reflects
+// towards the camera: Schlick's Fresnel at the view angle (lib/brdf.glsl), what
+// vct.cone_trace_specular multiplies its cone's radiance by.
+vec3 gbuffer_specular_weight(GbufferSample g) {
+  vec3 v = safe_normalize(frame.camera_position.xyz - g.position, g.normal);
+  vec3 f0 = mix(vec3(0.04), g.base_color, g.metallic);
+  return fresnel_schlick(f0, clamp(dot(g.normal, v), 0.0, 1.0));
+}
+
 // Diffuse reflectance c_diff = base colour x (1 - metallic): what the gathered E / pi is
-// multiplied by, per full-resolution pixel, after any averaging or upsampling.
-vec3 gbuffer_diffuse_reflectance(GbufferSample g) { return g.base_color * (1.0 - g.metallic); }
+// multiplied by, per full-resolution pixel, after any averaging or upsampling. With the
+// specular layer (SPECULAR_LAYER: the graph adds vct.cone_trace_specular's light on every
+// pixel) the diffuse reflects only what the specular weight leaves, (1 - F) c_diff, as the
+// direct light's BRDF does; otherwise diffuse and specular together reflect up to 1 + F.
+vec3 gbuffer_diffuse_reflectance(GbufferSample g) {
+  vec3 c_diff = g.base_color * (1.0 - g.metallic);
+#if SPECULAR_LAYER
+  c_diff *= vec3(1.0) - gbuffer_specular_weight(g);
+#endif
+  return c_diff;
+}
 
 // The full-resolution pixel a half-resolution pixel is traced from: the nearest (smallest
 // depth) of its 2x2 block, so silhouettes keep the foreground surface. Deterministic, so the

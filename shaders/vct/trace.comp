@@ -215,11 +215,7 @@ bool gather(ivec2 pixel, out GbufferSample g, out vec4 value, out vec3 reflectan
   VctCone cone = vct_cone_from_surface(p + g.normal * offset, r,
                                        vct_specular_tan_half_angle(g.roughness), g.normal, offset);
   VctConeResult traced = vct_trace_cone(cone, s);
-  vec3 f0 = mix(vec3(0.04), g.base_color, g.metallic);
-  float n_dot_v = clamp(dot(g.normal, v), 0.0, 1.0);
-  float m = 1.0 - n_dot_v;
-  vec3 fresnel = f0 + (vec3(1.0) - f0) * (m * m * m * m * m);
-  value = vec4(fresnel * traced.radiance, 1.0);
+  value = vec4(gbuffer_specular_weight(g) * traced.radiance, 1.0);
   return true;
 #else
   // The soft-shadow cone is traced in the diffuse cones' loop, as its first: a second call

@@ -63,6 +63,20 @@ TEST(CompilerCulling, WhenFalseCullsWithReason) {
   EXPECT_TRUE(with.culled.empty());
 }
 
+// A pass parameter may follow the condition that adds another pass (vct.cone_trace's
+// specular_layer follows the specular pass's scene.has_glossy).
+TEST(CompilerCulling, PassParametersReadSceneFeatures) {
+  const std::string passes =
+      R"({ "name": "clear", "type": "test.clear", "params": { "enabled": "scene.has_glossy" }, "out": { "color": "hdr" } },)" +
+      kShade;
+  for (double glossy : {0.0, 1.0}) {
+    CompileOptions options;
+    options.scene_features = {{"scene.has_glossy", glossy}};
+    const CompiledGraph g = compile_graph("", passes, options);
+    EXPECT_DOUBLE_EQ(g.find_pass("clear")->params.at("enabled").number, glossy);
+  }
+}
+
 const std::string kDeviceChoice = kClear + R"(
     { "name": "traced", "type": "test.blur", "when": "device.ray_query && scene.has_glossy", "in": { "src": "hdr" }, "out": { "dst": "spec" } },
     { "name": "shade", "type": "test.shade", "in": { "src": "hdr", "extra": "spec" }, "out": { "color": "ldr" } })";

@@ -112,8 +112,8 @@ TEST(CompilerValidation, WrongParameterType) {
   ASSERT_EQ(errors.size(), 4u) << ::testing::PrintToString(errors);
   EXPECT_EQ(errors[0],
             "graphs/test.json:9:68: error: pass 'clear' field 'params.value': in expression "
-            "\"abc\" at column 1: unknown name 'abc' (pass parameters may use numbers and ${graph "
-            "parameters})");
+            "\"abc\" at column 1: unknown name 'abc' (pass parameters may use numbers, scene "
+            "features and ${graph parameters})");
   EXPECT_EQ(errors[1],
             "graphs/test.json:9:83: error: pass 'clear' field 'params.count': expected an "
             "integer, found 1.5");

@@ -92,7 +92,11 @@ TEST_F(VctGraphTest, WhiteFurnaceIndirectEqualsEmission) {
 
 // The furnace with a white metal floor (f0 = 1): the floor reflects only through the
 // specular cone, F = 1 and the cone sees Le, so the indirect light stays Le everywhere
-// (diffuse on the walls, specular on the floor). Same 5% tolerance.
+// (diffuse on the walls, specular on the floor). The metal makes the scene glossy, so the
+// specular pass also adds F Le (F >= 0.04) on the white dielectric walls, whose diffuse must
+// then reflect only (1 - F) of what arrives (vct.cone_trace's specular_layer): without that
+// the image read 1.0139 Le, the walls 1.035-1.05 (docs/error-budget.md, thirty-ninth round).
+// Now 0.974, as the plain furnace. The same 5% tolerance, and never more than Le.
 TEST_F(VctGraphTest, WhiteFurnaceWithAMetalFloorKeepsLe) {
   const float le = 0.5f;
   RenderSetup setup = vct_setup(furnace_box(le, true));
@@ -102,18 +106,18 @@ TEST_F(VctGraphTest, WhiteFurnaceWithAMetalFloorKeepsLe) {
   harness.render();
   const RenderedImage indirect = harness.output("indirect");
   expect_finite_non_negative(indirect, "indirect");
-  const float error = std::abs(mean_rgb(indirect).g / le - 1.0f);
-  std::printf("white furnace with a metal floor: mean indirect / Le error %.2f%%\n",
-              100.0f * error);
+  const float mean = mean_rgb(indirect).g;
+  const float error = std::abs(mean / le - 1.0f);
+  std::printf("white furnace with a metal floor: mean indirect / Le = %.4f, error %.2f%%\n",
+              mean / le, 100.0f * error);
   EXPECT_LT(error, 0.05f);
+  EXPECT_LE(mean, le * 1.001f) << "diffuse and specular together create energy";
 }
 
 // Both furnaces in vct.filter's front-light mode (graphs/vct_front_light.json), whose cones read
 // the light over the facing shares: every surface shows Le from the front, so the division must
-// return Le, and the plain furnace never more. With the metal floor (the specular pass in this
-// mode) both modes read more than Le, 1.0102 here and 1.0139 through vct.json, the walls as much
-// as the floor (docs/error-budget.md, "What is left"), so that case is held to the 5% of the
-// landed mode's test.
+// return Le, and neither furnace more (measured 0.968 and, with the metal floor, 0.971; 1.0102
+// before the diffuse gave the specular its share).
 TEST_F(VctGraphTest, FrontLightWhiteFurnacesKeepLe) {
   const float le = 0.5f;
   for (bool metal_floor : {false, true}) {
@@ -127,12 +131,8 @@ TEST_F(VctGraphTest, FrontLightWhiteFurnacesKeepLe) {
     const glm::vec3 mean = mean_rgb(indirect);
     std::printf("front light, white furnace%s: mean indirect / Le = %.4f\n",
                 metal_floor ? " with a metal floor" : "", mean.g / le);
-    if (metal_floor) {
-      EXPECT_LT(std::abs(mean.g / le - 1.0f), 0.05f);
-    } else {
-      EXPECT_LT(std::abs(mean.g / le - 1.0f), 0.06f);
-      EXPECT_LE(mean.g, le * 1.001f) << "the gather creates energy";
-    }
+    EXPECT_LT(std::abs(mean.g / le - 1.0f), metal_floor ? 0.05f : 0.06f);
+    EXPECT_LE(mean.g, le * 1.001f) << "the gather creates energy";
   }
 }
 

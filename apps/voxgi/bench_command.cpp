@@ -169,7 +169,7 @@ class BenchRun {
         const graph::CompiledGraph compiled =
             catalog_.compile(desc, *scene, config.width, config.height, config.overrides);
         check_outputs(compiled, entry.file_as_written, entry.loc, config_field(config));
-        model = indirect_model_of(desc, compiled.parameters);
+        model = indirect_model_of(desc, compiled.parameters, scene->features().as_map());
       } catch (const std::exception& e) {
         fail_at(entry.loc, config_field(config),
                 "configuration " + config.id + " (" + config.label(spec_) + ") on '" +

@@ -7,8 +7,9 @@
 
 namespace voxgi::cli {
 
-std::optional<IndirectModel> indirect_model_of(const graph::GraphDesc& desc,
-                                               const std::map<std::string, double>& parameters) {
+std::optional<IndirectModel> indirect_model_of(
+    const graph::GraphDesc& desc, const std::map<std::string, double>& parameters,
+    const std::map<std::string, double>& scene_features) {
   if (!desc.indirect.present) return std::nullopt;
   const graph::ExprField& field = desc.indirect.bounces;
   auto fail = [&](const std::string& message) {
@@ -32,6 +33,22 @@ std::optional<IndirectModel> indirect_model_of(const graph::GraphDesc& desc,
   IndirectModel model;
   model.bounces = static_cast<uint32_t>(bounces);
   model.diffuse_only = desc.indirect.brdf == "diffuse";
+  const graph::ExprField& specular = desc.indirect.specular;
+  if (model.diffuse_only && specular.present) {
+    double value = specular.number;
+    if (!specular.is_number) {
+      graph::ExpressionEnv env;
+      env.params = parameters;
+      env.identifiers = scene_features;
+      try {
+        value = graph::evaluate_expression(specular.text, env);
+      } catch (const graph::ExpressionError& e) {
+        throw graph::GraphError(graph::Diagnostic{specular.loc, "", "indirect.specular",
+                                                  "'" + specular.text + "': " + e.what(), ""});
+      }
+    }
+    if (value != 0.0) model.diffuse_only = false;
+  }
   return model;
 }
 

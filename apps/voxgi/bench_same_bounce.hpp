@@ -20,11 +20,14 @@ struct IndirectModel {
 };
 
 // The graph's declared indirect light with its bounce count evaluated over the graph
-// parameters after overrides (CompiledGraph::parameters); nullopt when the graph declares
-// none. Throws GraphError at the graph file's `indirect.bounces` when the expression fails or
-// is not an integer in [0, 64].
+// parameters after overrides (CompiledGraph::parameters), and its BRDF terms: "full" where
+// `indirect.specular` holds for the scene's features (a glossy scene whose specular pass runs),
+// else `indirect.brdf`; nullopt when the graph declares none. Throws GraphError at the graph
+// file's `indirect.bounces` or `indirect.specular` when the expression fails, or when the
+// bounces are not an integer in [0, 64].
 std::optional<IndirectModel> indirect_model_of(const graph::GraphDesc& desc,
-                                               const std::map<std::string, double>& parameters);
+                                               const std::map<std::string, double>& parameters,
+                                               const std::map<std::string, double>& scene_features);
 
 // The name of the reference graph's `reference.path_tracer` pass, or "" when it has none.
 std::string path_tracer_pass_of(const graph::GraphDesc& reference);

@@ -113,7 +113,7 @@ class DescParser {
   void parse_indirect(const Value& v, GraphDesc& desc) {
     if (!expect(v, Value::Kind::Object, {}, "indirect", "an object {\"bounces\", \"brdf\"}"))
       return;
-    check_keys(v, keys({"bounces", "brdf", "doc"}), {}, "indirect.");
+    check_keys(v, keys({"bounces", "brdf", "specular", "doc"}), {}, "indirect.");
     IndirectDesc& indirect = desc.indirect;
     indirect.present = true;
     indirect.loc = v.loc();
@@ -129,6 +129,9 @@ class DescParser {
       } else {
         indirect.brdf = brdf->as_string();
       }
+    }
+    if (const Value* specular = v.find("specular")) {
+      indirect.specular = expr_field(*specular, "indirect", "specular");
     }
   }
 

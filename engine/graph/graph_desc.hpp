@@ -109,6 +109,10 @@ struct IndirectDesc {
   // only) or "full".
   std::string brdf = "full";
   SourceLoc brdf_loc;
+  // Optional condition over scene features and graph parameters ("scene.has_glossy"): where it
+  // holds, the indirect light also holds a glossy specular term (and its diffuse the rest), so
+  // it models the full BRDF whatever `brdf` says.
+  ExprField specular;
   SourceLoc loc;
 };
 

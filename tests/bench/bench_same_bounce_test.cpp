@@ -24,9 +24,14 @@ std::map<std::string, double> parameters_of(const graph::GraphDesc& desc,
   return parameters;
 }
 
-std::string error_of(const graph::GraphDesc& desc, const std::map<std::string, double>& params) {
+// A scene without glossy materials, and one with (SceneFeatures::as_map()).
+const std::map<std::string, double> kMatte = {{"scene.has_glossy", 0.0}};
+const std::map<std::string, double> kGlossy = {{"scene.has_glossy", 1.0}};
+
+std::string error_of(const graph::GraphDesc& desc, const std::map<std::string, double>& params,
+                     const std::map<std::string, double>& features = kMatte) {
   try {
-    indirect_model_of(desc, params);
+    indirect_model_of(desc, params, features);
   } catch (const graph::GraphError& e) {
     return e.what();
   }
@@ -35,20 +40,35 @@ std::string error_of(const graph::GraphDesc& desc, const std::map<std::string, d
 
 TEST(BenchSameBounce, VctDeclaresOneDiffuseBounce) {
   const graph::GraphDesc vct = graph::load_graph_file(kRepo / "graphs" / "vct.json");
-  const std::optional<IndirectModel> model = indirect_model_of(vct, parameters_of(vct));
+  const std::optional<IndirectModel> model = indirect_model_of(vct, parameters_of(vct), kMatte);
   ASSERT_TRUE(model);
   EXPECT_EQ(model->bounces, 1u);
   EXPECT_TRUE(model->diffuse_only);
   EXPECT_EQ(model->brdf(), "diffuse");
 }
 
+// On a glossy scene the specular pass runs and the diffuse leaves it its share: the indirect
+// light models the full BRDF and is compared with the full path tracer.
+TEST(BenchSameBounce, GlossyScenesHoldTheFullBrdf) {
+  for (const char* file :
+       {"vct.json", "dvs.json", "vct_front_light.json", "dvs_front_light.json"}) {
+    const graph::GraphDesc desc = graph::load_graph_file(kRepo / "graphs" / file);
+    EXPECT_TRUE(indirect_model_of(desc, parameters_of(desc), kMatte)->diffuse_only) << file;
+    EXPECT_EQ(indirect_model_of(desc, parameters_of(desc), kGlossy)->brdf(), "full") << file;
+  }
+  // lpv has no specular pass: diffuse on any scene.
+  const graph::GraphDesc lpv = graph::load_graph_file(kRepo / "graphs" / "lpv.json");
+  EXPECT_TRUE(indirect_model_of(lpv, parameters_of(lpv), kGlossy)->diffuse_only);
+}
+
 TEST(BenchSameBounce, DvsFollowsItsBounceParameter) {
   const graph::GraphDesc dvs = graph::load_graph_file(kRepo / "graphs" / "dvs.json");
   // K voxel bounces plus the final gather: K + 1 bounces of indirect light.
-  EXPECT_EQ(indirect_model_of(dvs, parameters_of(dvs))->bounces, 2u) << "default dvs.bounces 1";
+  EXPECT_EQ(indirect_model_of(dvs, parameters_of(dvs), kMatte)->bounces, 2u)
+      << "default dvs.bounces 1";
   for (double k : {0.0, 1.0, 2.0, 3.0}) {
     const std::optional<IndirectModel> model =
-        indirect_model_of(dvs, parameters_of(dvs, {{"dvs.bounces", k}}));
+        indirect_model_of(dvs, parameters_of(dvs, {{"dvs.bounces", k}}), kMatte);
     ASSERT_TRUE(model);
     EXPECT_EQ(model->bounces, static_cast<uint32_t>(k) + 1);
     EXPECT_TRUE(model->diffuse_only);
@@ -57,7 +77,7 @@ TEST(BenchSameBounce, DvsFollowsItsBounceParameter) {
 
 TEST(BenchSameBounce, LpvDeclaresOneDiffuseBounce) {
   const graph::GraphDesc lpv = graph::load_graph_file(kRepo / "graphs" / "lpv.json");
-  const std::optional<IndirectModel> model = indirect_model_of(lpv, parameters_of(lpv));
+  const std::optional<IndirectModel> model = indirect_model_of(lpv, parameters_of(lpv), kMatte);
   ASSERT_TRUE(model);
   EXPECT_EQ(model->bounces, 1u);
   EXPECT_TRUE(model->diffuse_only);
@@ -66,7 +86,7 @@ TEST(BenchSameBounce, LpvDeclaresOneDiffuseBounce) {
 TEST(BenchSameBounce, GraphsWithoutADeclarationHaveNone) {
   for (const char* file : {"default.json", "reference.json"}) {
     const graph::GraphDesc desc = graph::load_graph_file(kRepo / "graphs" / file);
-    EXPECT_FALSE(indirect_model_of(desc, parameters_of(desc))) << file;
+    EXPECT_FALSE(indirect_model_of(desc, parameters_of(desc), kMatte)) << file;
   }
 }
 
@@ -119,6 +139,12 @@ TEST(BenchSameBounce, BadDeclarationsNameTheGraphFileAndField) {
   EXPECT_NE(message.find("expected an integer number of bounces in [0, 64], found 1.5"),
             std::string::npos)
       << message;
+
+  const graph::GraphDesc unknown_feature =
+      graph_with(R"({ "bounces": 1, "brdf": "diffuse", "specular": "scene.has_glosy" })");
+  message = error_of(unknown_feature, parameters_of(unknown_feature));
+  EXPECT_NE(message.find("bad-graph.json:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("field 'indirect.specular'"), std::string::npos) << message;
 
   for (const char* bad : {R"({ "bounces": 1, "brdf": "glossy" })", R"({ "brdf": "full" })",
                           R"({ "bounces": 1, "bounce": 2 })", R"(3)"}) {

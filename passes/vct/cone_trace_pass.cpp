@@ -429,10 +429,10 @@ std::vector<graph::ParamSpec> trace_params(bool specular) {
                       0.0,
                       1.0,
                       {},
-                      "the graph adds vct.cone_trace_specular's light (F L) on every pixel: the "
-                      "diffuse then reflects (1 - F) c_diff, as the direct light does, so that "
-                      "the two together never reflect more than arrives (set it with the "
-                      "specular pass's condition)",
+                      "the graph adds vct.cone_trace_specular's light (S L, S the specular "
+                      "lobe's directional albedo) on every pixel: the diffuse then reflects "
+                      "(1 - S) c_diff, so that the two together never reflect more than "
+                      "arrives (set it with the specular pass's condition)",
                       false});
     params.push_back({"ao_falloff",
                       graph::ParamType::Float,
@@ -538,7 +538,7 @@ void register_cone_trace_specular(graph::Registry& registry) {
   info.type = "vct.cone_trace_specular";
   info.doc =
       "Indirect specular: one cone along the reflection, aperture from GGX roughness, times "
-      "Schlick's Fresnel";
+      "the lobe's directional albedo";
   info.inputs = trace_inputs();
   info.outputs = {image_output("specular", "indirect specular outgoing radiance", false,
                                {VK_FORMAT_R16G16B16A16_SFLOAT}),

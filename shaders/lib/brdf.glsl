@@ -19,6 +19,19 @@ vec3 fresnel_schlick(vec3 f0, float v_dot_h) {
   return f0 + (vec3(1.0) - f0) * (m2 * m2 * m);
 }
 
+// Directional albedo of the specular lobe for a view at n.v: the specular BRDF's cosine-weighted
+// integral over the hemisphere, f0 A + B. A and B are the analytic fit of the split-sum table
+// in Karis, "Physically Based Shading on Mobile" (2014), in perceptual roughness. Unlike
+// Schlick's F(n.v) it falls with roughness at grazing views (0.02 rather than 0.35 for a
+// roughness-1 dielectric at n.v = 0.2), and it is below 1 for a white metal (0.89 at roughness
+// 0.2), as single-scattering GGX is.
+vec3 specular_directional_albedo(vec3 f0, float roughness, float n_dot_v) {
+  vec4 r = roughness * vec4(-1.0, -0.0275, -0.572, 0.022) + vec4(1.0, 0.0425, 1.04, -0.04);
+  float a004 = min(r.x * r.x, exp2(-9.28 * n_dot_v)) * r.x + r.y;
+  vec2 scale_bias = vec2(-1.04, 1.04) * a004 + r.zw;
+  return clamp(f0 * scale_bias.x + scale_bias.y, vec3(0.0), vec3(1.0));
+}
+
 float ggx_distribution(float n_dot_h, float alpha) {
   float a2 = alpha * alpha;
   float d = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;

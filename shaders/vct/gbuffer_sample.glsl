@@ -51,20 +51,20 @@ GbufferSample gbuffer_sample(ivec2 pixel) {
   return g;
 }
 
-// The share of the light arriving from the mirror direction that the surface reflects
-// towards the camera: Schlick's Fresnel at the view angle (lib/brdf.glsl), what
+// The share of the light arriving around the mirror direction that the surface reflects
+// towards the camera: the specular lobe's directional albedo (lib/brdf.glsl), what
 // vct.cone_trace_specular multiplies its cone's radiance by.
 vec3 gbuffer_specular_weight(GbufferSample g) {
   vec3 v = safe_normalize(frame.camera_position.xyz - g.position, g.normal);
   vec3 f0 = mix(vec3(0.04), g.base_color, g.metallic);
-  return fresnel_schlick(f0, clamp(dot(g.normal, v), 0.0, 1.0));
+  return specular_directional_albedo(f0, g.roughness, clamp(dot(g.normal, v), 0.0, 1.0));
 }
 
 // Diffuse reflectance c_diff = base colour x (1 - metallic): what the gathered E / pi is
 // multiplied by, per full-resolution pixel, after any averaging or upsampling. With the
 // specular layer (SPECULAR_LAYER: the graph adds vct.cone_trace_specular's light on every
-// pixel) the diffuse reflects only what the specular weight leaves, (1 - F) c_diff, as the
-// direct light's BRDF does; otherwise diffuse and specular together reflect up to 1 + F.
+// pixel) the diffuse reflects only what the specular weight S leaves, (1 - S) c_diff, as the
+// direct light's BRDF leaves 1 - F; otherwise diffuse and specular together reflect 1 + S.
 vec3 gbuffer_diffuse_reflectance(GbufferSample g) {
   vec3 c_diff = g.base_color * (1.0 - g.metallic);
 #if SPECULAR_LAYER

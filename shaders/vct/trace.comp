@@ -11,7 +11,7 @@
 //                         into the light. With interleave > 1 this dispatch writes each pixel's
 //                         own gather (E / pi, a = AO; a < 0: nothing traced) for that average.
 //   specular (SPECULAR 1): one cone along the reflection, aperture from GGX roughness, times
-//                          Schlick's Fresnel at n.v.
+//                          the lobe's directional albedo at n.v (gbuffer_specular_weight).
 // HALF 1: writes the half-resolution scratch (rgb: E / pi or the specular result, a = AO) for
 // upsample.comp.
 // HAS_SHADOW 1 (diffuse only): also a soft-shadow cone towards the scene's first light (seed

@@ -10,10 +10,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 third_party_config/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j2
-# Two tests run at a time on two cores: lavapipe runs each one's shaders on one thread of its
-# own (LP_NUM_THREADS) rather than both competing for two (about 7% less time measured on a
-# two-core machine; no effect on a GPU).
-LP_NUM_THREADS="${LP_NUM_THREADS:-1}" ctest --test-dir build --output-on-failure -j2 --timeout 600 "$@"
+ctest --test-dir build --output-on-failure -j2 --timeout 600 "$@"
 if [ "$#" -eq 0 ]; then
   sanitized_tests=(voxgi_input_fuzz_tests voxgi_graph_tests voxgi_bench_unit_tests voxgi_scene_tests)
   # libFuzzer needs clang; a build-sanitize configured with another compiler is configured anew.

@@ -7,47 +7,45 @@
 
 namespace voxgi::cli {
 
+namespace {
+
+[[noreturn]] void fail_at(const graph::ExprField& f, const char* field,
+                          const std::string& message) {
+  throw graph::GraphError(graph::Diagnostic{f.loc, "", field, message, ""});
+}
+
+// The declared number, or its expression evaluated in `env`; a failure names `field` at its
+// place in the graph file.
+double value_of(const graph::ExprField& f, const char* field, const graph::ExpressionEnv& env) {
+  if (f.is_number) return f.number;
+  try {
+    return graph::evaluate_expression(f.text, env);
+  } catch (const graph::ExpressionError& e) {
+    fail_at(f, field, "'" + f.text + "': " + e.what());
+  }
+}
+
+}  // namespace
+
 std::optional<IndirectModel> indirect_model_of(
     const graph::GraphDesc& desc, const std::map<std::string, double>& parameters,
     const std::map<std::string, double>& scene_features) {
   if (!desc.indirect.present) return std::nullopt;
-  const graph::ExprField& field = desc.indirect.bounces;
-  auto fail = [&](const std::string& message) {
-    throw graph::GraphError(graph::Diagnostic{field.loc, "", "indirect.bounces", message, ""});
-  };
-  double bounces = field.number;
-  if (!field.is_number) {
-    graph::ExpressionEnv env;
-    env.params = parameters;
-    try {
-      bounces = graph::evaluate_expression(field.text, env);
-    } catch (const graph::ExpressionError& e) {
-      fail("'" + field.text + "': " + e.what());
-    }
-  }
+  graph::ExpressionEnv env;
+  env.params = parameters;
+  const double bounces = value_of(desc.indirect.bounces, "indirect.bounces", env);
   if (bounces != std::floor(bounces) || bounces < 0.0 || bounces > 64.0) {
     char text[64];
     std::snprintf(text, sizeof text, "%g", bounces);
-    fail(std::string("expected an integer number of bounces in [0, 64], found ") + text);
+    fail_at(desc.indirect.bounces, "indirect.bounces",
+            std::string("expected an integer number of bounces in [0, 64], found ") + text);
   }
   IndirectModel model;
   model.bounces = static_cast<uint32_t>(bounces);
   model.diffuse_only = desc.indirect.brdf == "diffuse";
-  const graph::ExprField& specular = desc.indirect.specular;
-  if (model.diffuse_only && specular.present) {
-    double value = specular.number;
-    if (!specular.is_number) {
-      graph::ExpressionEnv env;
-      env.params = parameters;
-      env.identifiers = scene_features;
-      try {
-        value = graph::evaluate_expression(specular.text, env);
-      } catch (const graph::ExpressionError& e) {
-        throw graph::GraphError(graph::Diagnostic{specular.loc, "", "indirect.specular",
-                                                  "'" + specular.text + "': " + e.what(), ""});
-      }
-    }
-    if (value != 0.0) model.diffuse_only = false;
+  if (model.diffuse_only && desc.indirect.specular.present) {
+    env.identifiers = scene_features;
+    model.diffuse_only = value_of(desc.indirect.specular, "indirect.specular", env) == 0.0;
   }
   return model;
 }

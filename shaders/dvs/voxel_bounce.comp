@@ -45,6 +45,20 @@ layout(push_constant) uniform Push {
   float start_offset;   // voxels of the voxel's level
 } pc;
 
+// Each voxel's own turn (radians) and ring position of its cone set (vct_diffuse_cone), from
+// an R3 low-discrepancy sequence over its texel, so that neighbouring voxels look along
+// different directions and the final gather, which averages many voxels, averages their sets.
+// A texel holds the same world voxel however the window moves (toroidal addressing), so a
+// voxel's set stays put. (One set for every voxel aimed every plane's cones the same way: with
+// 4 cones the Cornell boxes' second bounce read 1.22-1.33x the path tracer's on the ceiling and
+// 0.50-0.57x on the blocks' fronts; docs/error-budget.md, forty-first round.)
+vec2 voxel_cone_set(ivec3 texel) {
+  const vec3 r3 = vec3(0.8191725134, 0.6710436067, 0.5497004779);  // 1 / phi3^(1, 2, 3)
+  float u = fract(0.5 + dot(vec3(texel), r3));
+  float v = fract(0.5 + dot(vec3(texel), r3.yzx));
+  return vec2(2.0 * VCT_PI * u, v);
+}
+
 void main() {
   ivec3 texel = ivec3(gl_GlobalInvocationID);
   if (any(greaterThanEqual(uvec3(texel), pc.size))) return;
@@ -82,11 +96,8 @@ void main() {
       vec3 unit_n = n * inversesqrt(n_len2);
       float plane = voxel_plane_offset(texelFetch(voxel_normal, texel, 0));
       vec3 surface = p + unit_n * (plane * size);
-      // One cone frame for every voxel (rotation 0). Turning it from voxel to voxel, as the
-      // per-pixel gather does, changes neither the closed box of tests/dvs/dvs_energy_test.cpp
-      // (0.978 of radiosity with 2 voxel bounces at 32^3, 0.979 with one frame) nor the Sponza
-      // atrium's error by more than 1% (docs/error-budget.md, thirty-first round).
-      vec3 irradiance = vct_diffuse_irradiance(surface, unit_n, pc.cones, 0.0, 0.5,
+      vec2 cone_set = voxel_cone_set(texel);
+      vec3 irradiance = vct_diffuse_irradiance(surface, unit_n, pc.cones, cone_set.x, cone_set.y,
                                                (pc.normal_offset - plane) * size, s, visibility);
       bounce = albedo.rgb * (1.0 / VCT_PI) * sanitize_radiance(irradiance);
       radiance += bounce;

@@ -45,8 +45,8 @@ TEST_P(DvsAnalyticTest, ThinWallInOneVoxelSendsNothingThrough) {
   expect_thin_wall_in_one_voxel_sends_nothing_through(dvs_gi_setup(GetParam(), 2));
 }
 
-// Measured at 32^3: 1.000 / 0.983 / 0.964 of the radiosity solution for 0 / 1 / 2 voxel bounces,
-// at 64^3 0.997 / 0.979 / 0.959. (Until the voxel bounces sampled the volumes with the
+// Measured at 32^3: 1.013 / 0.995 / 0.976 of the radiosity solution for 0 / 1 / 2 voxel bounces,
+// at 64^3 0.993 / - / 0.960. (Until the voxel bounces sampled the volumes with the
 // contract's sampler the two-bounce case was 0.893 at 32^3: anisotropic filtering on lavapipe
 // widened every per-voxel sample; docs/error-budget.md, thirteenth round.)
 // Every bounce count up to 2 at 32^3; at 64^3 none and 2 (each voxel bounce there costs about

@@ -107,13 +107,10 @@ class BounceConvergenceTest : public GpuTest, public ::testing::WithParamInterfa
 // gather sees, so it rises monotonically, its increments shrink by rho g <= rho, and it never
 // exceeds Le / (1 - rho). Measured on lavapipe: g = 0.98 with the anisotropic volumes (the
 // graphs/dvs.json setting), 0.82 with the isotropic one (cones see through the box-filtered
-// walls at coarse mips); 0.98 and 0.79 with one cone set for every voxel. g was 0.90 while cones
-// also gathered the voxel's own surface, which in this box shines like every other wall
-// (docs/vct.md), and 0.75 / 0.45 before cones read opacity across their travel as coverage: the
-// walls lie in the window's outermost layer, where cones end at the layer's centre and oblique ones
-// have not yet met all of its opacity (cone_trace_library_test,
-// EmitterInTheWindowsOuterLayerIsSeen). What else keeps g below 1 in a closed box is not yet
-// accounted for.
+// walls at coarse mips); 0.98 and 0.79 with one cone set for every voxel. Earlier, lower values
+// and what raised them are in docs/error-budget.md (cones gathering the voxel's own surface;
+// opacity read as coverage across a cone's travel, cone_trace_library_test,
+// EmitterInTheWindowsOuterLayerIsSeen).
 TEST_P(BounceConvergenceTest, RepeatedBouncesConvergeLikeAContraction) {
   const bool anisotropic = GetParam();
   const float rho = 128.0f / 255.0f;

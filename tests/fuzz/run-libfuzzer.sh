@@ -11,7 +11,8 @@
 # input, default 20), VOXGI_FUZZ_RSS_MB (default 2048; at least 4096 for glTF seeded with files
 # over 1 MiB, as libFuzzer keeps its corpus in memory), VOXGI_FUZZ_SCENES (more glTF seeds,
 # default ../shared/scenes; empty: none), VOXGI_FUZZ_ARGS (more libFuzzer flags, e.g.
-# "-jobs=4 -workers=4"), ASAN_OPTIONS (default detect_leaks=0, as in tests/run.sh).
+# "-jobs=4 -workers=4"), VOXGI_FUZZ_PARALLEL (targets run at once, default one per core),
+# ASAN_OPTIONS (default detect_leaks=0, as in tests/run.sh).
 set -euo pipefail
 if [ "$#" -lt 2 ]; then
   echo "usage: $0 BUILD_DIR SECONDS [json|graph|expression|bench|gltf ...]" >&2
@@ -76,14 +77,11 @@ seed() {
 
 stat_of() { sed -n "s/^stat::$1: *//p" "$2" | tail -1; }
 
-failed=()
-summary=()
-for target in "${targets[@]}"; do
-  binary="$build/bin/voxgi_fuzz_$target"
-  if [ ! -x "$binary" ]; then
-    echo "$binary is missing: configure $build with -DVOXGI_FUZZ=ON and build voxgi_fuzz_targets" >&2
-    exit 2
-  fi
+# One target's run: its log in $run/<target>.log, its summary line in $run/<target>.result
+# (the first word "failed" when it failed).
+fuzz_one() {
+  local target="$1" binary="$build/bin/voxgi_fuzz_$1"
+  local max_len dict log rss rc=0 result=ok artifacts
   max_len="$(seed "$target")"
   dict="$here/inputs.dict"
   [ "$target" = expression ] && dict="$here/expression.dict"
@@ -91,29 +89,54 @@ for target in "${targets[@]}"; do
   rss="$rss_mb"
   [ "$max_len" -gt 1048576 ] && [ "$rss" -lt 4096 ] && rss=4096
   echo "fuzz $target: ${seconds}s, max_len $max_len, corpus $run/corpus/$target"
-  rc=0
   # shellcheck disable=SC2086  # VOXGI_FUZZ_ARGS is a list of flags
   (cd "$run" && "$binary" -max_total_time="$seconds" -timeout="$timeout_s" \
     -rss_limit_mb="$rss" -max_len="$max_len" -dict="$dict" -print_final_stats=1 \
     -artifact_prefix="$run/artifacts/$target-" ${VOXGI_FUZZ_ARGS:-} "$run/corpus/$target") \
     >"$log" 2>&1 || rc=$?
-  execs="$(stat_of number_of_executed_units "$log")"
-  per_s="$(stat_of average_exec_per_sec "$log")"
-  added="$(stat_of new_units_added "$log")"
-  peak="$(stat_of peak_rss_mb "$log")"
   artifacts=("$run/artifacts/$target-"*)
   [ -e "${artifacts[0]}" ] || artifacts=()
-  result=ok
   if [ "$rc" -ne 0 ] || [ "${#artifacts[@]}" -gt 0 ] ||
     grep -qE '^(==[0-9]+==ERROR|SUMMARY: |.*runtime error: )' "$log"; then
     result="FAILED (exit $rc)"
-    failed+=("$target")
-    echo "fuzz $target failed; last lines of $log:" >&2
-    tail -n 40 "$log" >&2
-    for a in "${artifacts[@]}"; do echo "fuzz $target: failing input $a" >&2; done
   fi
-  summary+=("$(printf '%-10s %6ss %12s execs %8s exec/s %6s new %6s MB  %s' "$target" "$seconds" \
-    "${execs:-?}" "${per_s:-?}" "${added:-?}" "${peak:-?}" "$result")")
+  printf '%-10s %6ss %12s execs %8s exec/s %6s new %6s MB  %s\n' "$target" "$seconds" \
+    "$(stat_of number_of_executed_units "$log")" "$(stat_of average_exec_per_sec "$log")" \
+    "$(stat_of new_units_added "$log")" "$(stat_of peak_rss_mb "$log")" "$result" \
+    >"$run/$target.result"
+}
+
+for target in "${targets[@]}"; do
+  if [ ! -x "$build/bin/voxgi_fuzz_$target" ]; then
+    echo "$build/bin/voxgi_fuzz_$target is missing: configure $build with -DVOXGI_FUZZ=ON and" \
+      "build voxgi_fuzz_targets" >&2
+    exit 2
+  fi
+done
+# Each libFuzzer process uses one core: the targets run side by side, one per core
+# (VOXGI_FUZZ_PARALLEL), each for its full SECONDS.
+parallel="${VOXGI_FUZZ_PARALLEL:-$(nproc)}"
+for target in "${targets[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$parallel" ]; do wait -n || true; done
+  fuzz_one "$target" &
+done
+wait
+
+failed=()
+summary=()
+for target in "${targets[@]}"; do
+  line="$(cat "$run/$target.result" 2>/dev/null || echo "$target: no result (the run stopped)")"
+  summary+=("$line")
+  case "$line" in
+    *FAILED* | *"no result"*)
+      failed+=("$target")
+      echo "fuzz $target failed; last lines of $run/$target.log:" >&2
+      tail -n 40 "$run/$target.log" >&2 || true
+      for a in "$run/artifacts/$target-"*; do
+        [ -e "$a" ] && echo "fuzz $target: failing input $a" >&2
+      done
+      ;;
+  esac
 done
 
 echo "libFuzzer runs ($run):"

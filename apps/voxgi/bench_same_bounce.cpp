@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engine/graph/expression.hpp"
+#include "engine/graph/expression_field.hpp"
 
 namespace voxgi::cli {
 
@@ -14,17 +14,6 @@ namespace {
   throw graph::GraphError(graph::Diagnostic{f.loc, "", field, message, ""});
 }
 
-// The declared number, or its expression evaluated in `env`; a failure names `field` at its
-// place in the graph file.
-double value_of(const graph::ExprField& f, const char* field, const graph::ExpressionEnv& env) {
-  if (f.is_number) return f.number;
-  try {
-    return graph::evaluate_expression(f.text, env);
-  } catch (const graph::ExpressionError& e) {
-    fail_at(f, field, "'" + f.text + "': " + e.what());
-  }
-}
-
 }  // namespace
 
 std::optional<IndirectModel> indirect_model_of(
@@ -33,7 +22,7 @@ std::optional<IndirectModel> indirect_model_of(
   if (!desc.indirect.present) return std::nullopt;
   graph::ExpressionEnv env;
   env.params = parameters;
-  const double bounces = value_of(desc.indirect.bounces, "indirect.bounces", env);
+  const double bounces = graph::evaluate_field(desc.indirect.bounces, "indirect.bounces", env);
   if (bounces != std::floor(bounces) || bounces < 0.0 || bounces > 64.0) {
     char text[64];
     std::snprintf(text, sizeof text, "%g", bounces);
@@ -45,7 +34,8 @@ std::optional<IndirectModel> indirect_model_of(
   model.diffuse_only = desc.indirect.brdf == "diffuse";
   if (model.diffuse_only && desc.indirect.specular.present) {
     env.identifiers = scene_features;
-    model.diffuse_only = value_of(desc.indirect.specular, "indirect.specular", env) == 0.0;
+    model.diffuse_only =
+        graph::evaluate_field(desc.indirect.specular, "indirect.specular", env) == 0.0;
   }
   return model;
 }

@@ -12,6 +12,7 @@
 #include "engine/gpu/device_features.hpp"
 #include "engine/graph/compose.hpp"
 #include "engine/graph/expression.hpp"
+#include "engine/graph/expression_field.hpp"
 #include "engine/graph/resource_plan.hpp"
 
 namespace voxgi::graph {
@@ -74,18 +75,6 @@ std::vector<Diagnostic> validate_pass(const CompiledPass& pass) {
 }
 
 namespace {
-
-// An expression as quoted in a message: whole when short, otherwise the part around `column`
-// (1-based) with "..." where text was left out, so a huge expression does not flood the error.
-std::string quoted_expression(const std::string& text, int column) {
-  constexpr size_t kShown = 60;
-  if (text.size() <= 2 * kShown) return text;
-  const size_t at = static_cast<size_t>(std::max(column, 1) - 1);
-  const size_t begin = at > kShown ? at - kShown : 0;
-  const size_t end = std::min(text.size(), at + kShown);
-  return (begin > 0 ? "..." : "") + text.substr(begin, end - begin) +
-         (end < text.size() ? "..." : "");
-}
 
 constexpr uint32_t kMaxImageSize2D = 16384;
 constexpr uint32_t kMaxImageSize3D = 2048;
@@ -281,12 +270,7 @@ class Compiler {
     try {
       return evaluate_expression(f.text, env);
     } catch (const ExpressionError& e) {
-      SourceLoc loc = f.loc;
-      loc.column += e.column();  // past the opening quote
-      diags_.error(loc, pass, field,
-                   "in expression \"" + quoted_expression(f.text, e.column()) + "\" at column " +
-                       std::to_string(e.column()) + ": " + e.what(),
-                   e.hint());
+      diags_.add(expression_field_diagnostic(f, pass, field, e));
       return std::nullopt;
     }
   }

@@ -145,6 +145,10 @@ TEST(BenchSameBounce, BadDeclarationsNameTheGraphFileAndField) {
   message = error_of(unknown_feature, parameters_of(unknown_feature));
   EXPECT_NE(message.find("bad-graph.json:2:"), std::string::npos) << message;
   EXPECT_NE(message.find("field 'indirect.specular'"), std::string::npos) << message;
+  // The graph compiler's message for a failing expression: its column and a did-you-mean.
+  EXPECT_NE(message.find("in expression \"scene.has_glosy\" at column 1"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("did you mean 'scene.has_glossy'"), std::string::npos) << message;
 
   for (const char* bad : {R"({ "bounces": 1, "brdf": "glossy" })", R"({ "brdf": "full" })",
                           R"({ "bounces": 1, "bounce": 2 })", R"(3)"}) {

@@ -75,10 +75,15 @@ seed() {
   echo $((largest > 65536 ? largest : 65536))
 }
 
-stat_of() { sed -n "s/^stat::$1: *//p" "$2" | tail -1; }
+# A libFuzzer final statistic from a log, "?" when the log has none.
+stat_of() {
+  local value
+  value="$(sed -n "s/^stat::$1: *//p" "$2" | tail -1)"
+  echo "${value:-?}"
+}
 
 # One target's run: its log in $run/<target>.log, its summary line in $run/<target>.result
-# (the first word "failed" when it failed).
+# (ending in FAILED and the exit status when it failed).
 fuzz_one() {
   local target="$1" binary="$build/bin/voxgi_fuzz_$1"
   local max_len dict log rss rc=0 result=ok artifacts
@@ -133,7 +138,7 @@ for target in "${targets[@]}"; do
       echo "fuzz $target failed; last lines of $run/$target.log:" >&2
       tail -n 40 "$run/$target.log" >&2 || true
       for a in "$run/artifacts/$target-"*; do
-        [ -e "$a" ] && echo "fuzz $target: failing input $a" >&2
+        if [ -e "$a" ]; then echo "fuzz $target: failing input $a" >&2; fi
       done
       ;;
   esac

@@ -28,6 +28,11 @@ here="$repo/tests/fuzz/libfuzzer"
 timeout_s="${VOXGI_FUZZ_TIMEOUT:-20}"
 rss_mb="${VOXGI_FUZZ_RSS_MB:-2048}"
 scenes="${VOXGI_FUZZ_SCENES-$repo/../shared/scenes}"
+parallel="${VOXGI_FUZZ_PARALLEL:-$(nproc)}"
+if ! [[ "$parallel" =~ ^[1-9][0-9]*$ ]]; then
+  echo "VOXGI_FUZZ_PARALLEL='$parallel': expected a whole number of targets at once, at least 1" >&2
+  exit 2
+fi
 
 run="$build/fuzz/run-$(date +%Y%m%d-%H%M%S)-$$"
 mkdir -p "$run/artifacts"
@@ -120,7 +125,6 @@ for target in "${targets[@]}"; do
 done
 # Each libFuzzer process uses one core: the targets run side by side, one per core
 # (VOXGI_FUZZ_PARALLEL), each for its full SECONDS.
-parallel="${VOXGI_FUZZ_PARALLEL:-$(nproc)}"
 for target in "${targets[@]}"; do
   while [ "$(jobs -rp | wc -l)" -ge "$parallel" ]; do wait -n || true; done
   fuzz_one "$target" &

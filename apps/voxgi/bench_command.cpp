@@ -314,6 +314,7 @@ class BenchRun {
     SameBounceResult s;
     s.bounces = model.bounces;
     s.brdf = model.brdf();
+    s.faces = model.front_faces_only ? "front" : "both";
     const image::ImageRGBA32F* indirect =
         run.outputs.count("indirect") ? &run.outputs.at("indirect") : nullptr;
     if (full) s.full_reference_key = full->key;
@@ -496,7 +497,7 @@ int run_bench(const std::vector<std::string>& argv) {
                 << ")";
       if (refs.model) {
         std::cout << "  indirect: " << refs.model->bounces << " bounce"
-                  << (refs.model->bounces == 1 ? "" : "s") << ", " << refs.model->brdf();
+                  << (refs.model->bounces == 1 ? "" : "s") << ", " << refs.model->terms();
         if (refs.same_bounce) {
           std::cout << "; " << refs.same_bounce->what << " " << listed(*refs.same_bounce);
         }

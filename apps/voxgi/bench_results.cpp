@@ -30,6 +30,7 @@ json same_bounce_json(const std::optional<SameBounceResult>& s) {
   if (!s) return nullptr;
   return {{"bounces", s->bounces},
           {"brdf", s->brdf},
+          {"faces", s->faces},
           {"reference_set", s->reference_set},
           {"reference_key", s->reference_key},
           {"reference_cache_hit", s->reference_cache_hit},
@@ -129,6 +130,8 @@ class Reader {
     SameBounceResult s;
     s.bounces = static_cast<uint32_t>(count(v, "bounces", inner));
     s.brdf = text(v, "brdf", inner);
+    // Absent in results written before graphs declared their faces: both, as then.
+    if (v.contains("faces")) s.faces = text(v, "faces", inner);
     s.reference_set = strings(v, "reference_set", inner);
     s.reference_key = text(v, "reference_key", inner);
     s.reference_cache_hit = flag(v, "reference_cache_hit", inner);
@@ -391,7 +394,8 @@ std::string results_csv(const BenchResults& results) {
          "same_bounce_rel_mse,same_bounce_ssim_luminance,same_bounce_hdr_flip,"
          "same_bounce_luminance_bias,full_indirect_rel_mse,full_indirect_ssim_luminance,"
          "full_indirect_hdr_flip,full_indirect_luminance_bias,missing_indirect_fraction,"
-         "same_bounce_reference_key,gpu_memory_bytes,same_bounce_reference_noise_rel_mse\n";
+         "same_bounce_reference_key,gpu_memory_bytes,same_bounce_reference_noise_rel_mse,"
+         "indirect_faces\n";
   for (const ConfigResult& r : results.results) {
     std::string overrides;
     for (const auto& [k, v] : r.overrides)
@@ -435,6 +439,7 @@ std::string results_csv(const BenchResults& results) {
     if (r.same_bounce && r.same_bounce->reference_noise_rel_mse) {
       out << number_text(*r.same_bounce->reference_noise_rel_mse);
     }
+    out << ',' << (r.same_bounce ? r.same_bounce->faces : "");
     out << '\n';
   }
   return out.str();

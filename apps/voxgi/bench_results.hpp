@@ -46,7 +46,8 @@ FrameTimes summarize_frames(const std::vector<std::vector<graph::Executor::PassT
 // graph declares (bench_same_bounce.hpp).
 struct SameBounceResult {
   uint32_t bounces = 0;
-  std::string brdf;                                  // "diffuse" or "full"
+  std::string brdf;            // "diffuse" or "full"
+  std::string faces = "both";  // of single-sided materials: "front" or "both" (indirect.faces)
   std::map<std::string, std::string> reference_set;  // the reference graph's overrides
   std::string reference_key;
   bool reference_cache_hit = false;

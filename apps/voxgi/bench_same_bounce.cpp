@@ -32,6 +32,7 @@ std::optional<IndirectModel> indirect_model_of(
   IndirectModel model;
   model.bounces = static_cast<uint32_t>(bounces);
   model.diffuse_only = desc.indirect.brdf == "diffuse";
+  model.front_faces_only = desc.indirect.faces == "front";
   if (model.diffuse_only && desc.indirect.specular.present) {
     env.identifiers = scene_features;
     model.diffuse_only =
@@ -55,6 +56,7 @@ std::map<std::string, std::string> same_bounce_reference_set(
   set[path_tracer_pass + ".deferred_layers"] = "true";
   set[path_tracer_pass + ".pixel_jitter"] = "false";
   if (model.diffuse_only) set[path_tracer_pass + ".lambert"] = "true";
+  if (model.front_faces_only) set[path_tracer_pass + ".single_sided"] = "true";
   return set;
 }
 

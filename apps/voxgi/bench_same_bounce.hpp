@@ -16,15 +16,19 @@ namespace voxgi::cli {
 struct IndirectModel {
   uint32_t bounces = 0;
   bool diffuse_only = false;
+  // Single-sided materials reflect and emit on their front only (`indirect.faces` "front").
+  bool front_faces_only = false;
   std::string brdf() const { return diffuse_only ? "diffuse" : "full"; }
+  // The BRDF terms and, where only fronts count, "front faces": "diffuse, front faces".
+  std::string terms() const { return brdf() + (front_faces_only ? ", front faces" : ""); }
 };
 
 // The graph's declared indirect light with its bounce count evaluated over the graph
 // parameters after overrides (CompiledGraph::parameters), and its BRDF terms: "full" where
 // `indirect.specular` holds for the scene's features (a glossy scene whose specular pass runs),
-// else `indirect.brdf`; nullopt when the graph declares none. Throws GraphError at the graph
-// file's `indirect.bounces` or `indirect.specular` when the expression fails, or when the
-// bounces are not an integer in [0, 64].
+// else `indirect.brdf`, and its faces (`indirect.faces`); nullopt when the graph declares none.
+// Throws GraphError at the graph file's `indirect.bounces` or `indirect.specular` when the
+// expression fails, or when the bounces are not an integer in [0, 64].
 std::optional<IndirectModel> indirect_model_of(const graph::GraphDesc& desc,
                                                const std::map<std::string, double>& parameters,
                                                const std::map<std::string, double>& scene_features);
@@ -36,7 +40,8 @@ std::string path_tracer_pass_of(const graph::GraphDesc& reference);
 // deferred split counts emitters one reflection behind), deferred_layers = true,
 // pixel_jitter = false (every sample through the pixel's centre, where the techniques' G-buffer
 // shades: the pixel's area would mix in what no per-pixel gather can show, such as a 1 mm gap at an
-// emitter's rim), and lambert = true for a diffuse-only technique.
+// emitter's rim), lambert = true for a diffuse-only technique and single_sided = true for one
+// that lights single-sided materials' fronts only.
 std::map<std::string, std::string> same_bounce_reference_set(
     const std::map<std::string, std::string>& reference_set, const std::string& path_tracer_pass,
     const IndirectModel& model);

@@ -77,7 +77,7 @@ void write_like_with_like_table(std::ostringstream& md, const Group& group) {
     if (!r->same_bounce) continue;
     const SameBounceResult& s = *r->same_bounce;
     md << "| " << r->id << " | " << cell(r->technique) << " | " << cell(settings_of(*r)) << " | "
-       << s.bounces << ", " << s.brdf << " | "
+       << s.bounces << ", " << s.brdf << (s.faces == "front" ? ", front faces" : "") << " | "
        << metric_cell(s.indirect, &image::ImageMetrics::luminance_bias) << " | "
        << metric_cell(s.indirect, &image::ImageMetrics::rel_mse) << " | "
        << optional_cell(s.reference_noise_rel_mse) << " | "

@@ -113,7 +113,7 @@ class DescParser {
   void parse_indirect(const Value& v, GraphDesc& desc) {
     if (!expect(v, Value::Kind::Object, {}, "indirect", "an object {\"bounces\", \"brdf\"}"))
       return;
-    check_keys(v, keys({"bounces", "brdf", "specular", "doc"}), {}, "indirect.");
+    check_keys(v, keys({"bounces", "brdf", "specular", "faces", "doc"}), {}, "indirect.");
     IndirectDesc& indirect = desc.indirect;
     indirect.present = true;
     indirect.loc = v.loc();
@@ -132,6 +132,13 @@ class DescParser {
     }
     if (const Value* specular = v.find("specular")) {
       indirect.specular = expr_field(*specular, "indirect", "specular");
+    }
+    if (const Value* faces = v.find("faces")) {
+      if (!faces->is_string() || (faces->as_string() != "front" && faces->as_string() != "both")) {
+        diags_.error(faces->loc(), {}, "indirect.faces", "expected \"front\" or \"both\"");
+      } else {
+        indirect.faces = faces->as_string();
+      }
     }
   }
 

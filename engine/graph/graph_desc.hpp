@@ -113,6 +113,10 @@ struct IndirectDesc {
   // holds, the indirect light also holds a glossy specular term (and its diffuse the rest), so
   // it models the full BRDF whatever `brdf` says.
   ExprField specular;
+  // Which faces of glTF single-sided materials (doubleSided false) reflect and emit: "both"
+  // (as the path tracer shades them by default, and Cycles) or "front" (only the side their
+  // normals face; their backs are culled from view and stay dark, as in the rasterised passes).
+  std::string faces = "both";
   SourceLoc loc;
 };
 

@@ -97,9 +97,10 @@ void GpuBvh::upload(const Scene& scene, const Bvh& bvh) {
   shading.reserve(triangles.size());
   for (uint32_t i = 0; i < triangles.size(); ++i) {
     const BvhTriangle& t = triangles[i];
-    positions.push_back({glm::vec4(t.v0, 0.0f), glm::vec4(t.v1, 0.0f), glm::vec4(t.v2, 0.0f)});
-
     const Instance& instance = bvh.instances()[t.instance];
+    positions.push_back({glm::vec4(t.v0, instance.mirrored ? -1.0f : 1.0f), glm::vec4(t.v1, 0.0f),
+                         glm::vec4(t.v2, 0.0f)});
+
     const Primitive& primitive = primitive_of(scene, instance);
     const glm::mat3 linear(instance.world);
     const float det = glm::determinant(linear);

@@ -33,7 +33,10 @@ struct GpuBvhNode {
 static_assert(sizeof(GpuBvhNode) == 32);
 
 struct GpuBvhTriangle {
-  glm::vec4 v0, v1, v2;  // xyz relative to the BVH origin; w unused
+  // xyz relative to the BVH origin. v0.w: which side of cross(v1 - v0, v2 - v0) is the glTF
+  // front (counter-clockwise winding): +1, or -1 under a mirroring transform, whose winding
+  // is clockwise. v1.w, v2.w unused.
+  glm::vec4 v0, v1, v2;
 };
 static_assert(sizeof(GpuBvhTriangle) == 48);
 

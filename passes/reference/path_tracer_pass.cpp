@@ -34,6 +34,7 @@ constexpr uint32_t kAccumulationLayers = 5;
 constexpr uint32_t kFlagLambert = 1;
 constexpr uint32_t kFlagPixelJitter = 2;
 constexpr uint32_t kFlagDeferredLayers = 4;
+constexpr uint32_t kFlagSingleSided = 8;
 
 // Mirrors the push-constant block of shaders/reference/path_trace.comp.
 struct PathTracePush {
@@ -178,7 +179,8 @@ class PathTracerPass final : public graph::Pass {
     push.rr_start = static_cast<uint32_t>(ctx.integer("rr_start"));
     push.flags = (ctx.flag("lambert") ? kFlagLambert : 0u) |
                  (ctx.flag("pixel_jitter") ? kFlagPixelJitter : 0u) |
-                 (ctx.flag("deferred_layers") ? kFlagDeferredLayers : 0u);
+                 (ctx.flag("deferred_layers") ? kFlagDeferredLayers : 0u) |
+                 (ctx.flag("single_sided") ? kFlagSingleSided : 0u);
     push.node_count = bvh.node_count();
     push.emitter_count = bvh.emitter_count();
     push.first_bounce_distance = static_cast<float>(ctx.number("first_bounce_distance"));
@@ -290,6 +292,18 @@ void register_path_tracer(graph::Registry& registry) {
        "split direct/indirect as deferred lighting + voxel GI do (direct: emission seen and "
        "punctual lights at the first hit; emissive surfaces reach max_depth - 1 reflections), "
        "for like-with-like comparisons of GI techniques",
+       true},
+      {"single_sided",
+       graph::ParamType::Bool,
+       0.0,
+       0.0,
+       1.0,
+       {},
+       "treat glTF single-sided materials (doubleSided false) as the rasterised passes do: "
+       "camera rays pass through their faces seen from behind their winding, which the "
+       "G-buffer culls, and any other ray that meets one from the side its vertex normals turn "
+       "away from stops there with no light, as voxels light only the side their normals face "
+       "(off: both faces shaded, as Cycles renders glTF)",
        true},
       {"pixel_jitter",
        graph::ParamType::Bool,

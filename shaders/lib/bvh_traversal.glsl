@@ -29,7 +29,7 @@ struct BvhNode {
 };
 
 struct BvhTriangle {
-  vec4 v0;
+  vec4 v0;  // w: +1, or -1 where the glTF front is -cross(v1 - v0, v2 - v0) (mirrored)
   vec4 v1;
   vec4 v2;
 };
@@ -175,6 +175,13 @@ BvhHit bvh_trace(vec3 o, vec3 d, float t_min, float t_max, uint node_count, bool
 vec3 bvh_triangle_normal(uint triangle) {
   BvhTriangle tri = bvh_triangles[triangle];
   return cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
+}
+
+// The geometric normal on the glTF front's side (the counter-clockwise winding's, clockwise
+// under a mirroring transform), as the rasteriser culls; not normalised.
+vec3 bvh_triangle_front_normal(uint triangle) {
+  return bvh_triangles[triangle].v0.w < 0.0 ? -bvh_triangle_normal(triangle)
+                                            : bvh_triangle_normal(triangle);
 }
 
 #endif

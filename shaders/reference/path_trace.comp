@@ -57,6 +57,12 @@ const uint FLAG_PIXEL_JITTER = 2u;
 // less than punctual lights (max_depth - 1): voxel GI injects emission as voxel radiance, but
 // punctual light only after its first reflection.
 const uint FLAG_DEFERRED_LAYERS = 4u;
+// glTF's single-sided materials (doubleSided false) as the rasterised passes treat them
+// (path_tracer.single_sided): camera rays pass through their back faces by winding, which the
+// G-buffer culls, and a face that a later ray meets from the side its vertex normals turn away
+// from blocks it but reflects and emits nothing, as voxels light and show only the side their
+// normals face. The two sides agree unless a mesh's normals contradict its winding.
+const uint FLAG_SINGLE_SIDED = 8u;
 
 layout(push_constant) uniform Push {
   vec4 origin;  // xyz: BVH origin in world space
@@ -125,6 +131,27 @@ bool bvh_hit_filter(uint triangle, float u, float v) {
   return float(h >> 8u) * (1.0 / 16777216.0) < alpha;
 }
 #endif
+
+bool single_sided_material(uint triangle) {
+  return scene_materials[bvh_shading[triangle].material].double_sided == 0u;
+}
+
+// Whether a ray along `ray_d` meets a single-sided material's face from behind its winding
+// (the face the G-buffer culls).
+bool culled_back(uint triangle, vec3 ray_d) {
+  return single_sided_material(triangle) && dot(bvh_triangle_front_normal(triangle), ray_d) > 0.0;
+}
+
+// Whether a ray along `ray_d` meets a single-sided material at (u, v) of `triangle` from the
+// side its vertex normals turn away from (the side its voxels leave dark). The face's own
+// plane decides, on the side the interpolated normal leans to.
+bool unlit_back(uint triangle, float u, float v, vec3 ray_d) {
+  if (!single_sided_material(triangle)) return false;
+  BvhShading s = bvh_shading[triangle];
+  vec3 n = s.normal[0].xyz * (1.0 - u - v) + s.normal[1].xyz * u + s.normal[2].xyz * v;
+  vec3 ng = bvh_triangle_normal(triangle);
+  return dot(dot(ng, n) >= 0.0 ? ng : -ng, ray_d) > 0.0;
+}
 
 struct Hit {
   vec3 position;     // relative to the BVH origin
@@ -291,6 +318,10 @@ vec3 next_event(Hit hit, Bsdf b, vec3 v, bool first_bounce, inout uint rng,
         MaterialSample m = sample_material(s.material, surface_attributes(s, bu, bv), s.normal[0].xyz * w + s.normal[1].xyz * bu + s.normal[2].xyz * bv,
                                            s.tangent[0] * w + s.tangent[1] * bu + s.tangent[2] * bv);
         vec3 f = bsdf_eval_cos(b, n, v, l) * emitted(m);
+        // Seen from behind, a single-sided emitter sends nothing (l runs towards it).
+        if ((pc.flags & FLAG_SINGLE_SIDED) != 0u && unlit_back(triangle, bu, bv, l)) {
+          f = vec3(0.0);
+        }
         if (max3(f) > 0.0) {
           vec3 from = offset_origin(hit.position, hit.geometric, l);
           vec3 a = abs(p);
@@ -324,11 +355,26 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
   vec3 throughput = vec3(1.0);
   float previous_pdf = 0.0;  // BSDF density of the direction that led here
   bool deferred = (pc.flags & FLAG_DEFERRED_LAYERS) != 0u;
+  bool single_sided_mode = (pc.flags & FLAG_SINGLE_SIDED) != 0u;
 
   for (uint depth = 0u;; ++depth) {
     g_filter_seed = pcg_hash(rng);
     rng = g_filter_seed;
     BvhHit h = bvh_trace(origin, dir, 0.0, 3.0e38, pc.node_count, false);
+    if (single_sided_mode) {
+      // Camera rays pass through culled faces (a bounded number, so that a degenerate stack of
+      // them cannot hang the pass); a later ray ends on an unlit back.
+      for (uint skips = 0u; depth == 0u && h.hit && skips < 64u && culled_back(h.triangle, dir);
+           ++skips) {
+        vec3 ng = safe_normalize(bvh_triangle_normal(h.triangle), dir);
+        origin = offset_origin(origin + dir * h.t, ng, dir);
+        h = bvh_trace(origin, dir, 0.0, 3.0e38, pc.node_count, false);
+      }
+      if (h.hit && (depth == 0u ? culled_back(h.triangle, dir)
+                                : unlit_back(h.triangle, h.u, h.v, dir))) {
+        break;
+      }
+    }
     if (!h.hit) break;  // no environment light
     if (depth == 1u && !within_first_bounce_distance(h.t)) break;
     Hit hit = shade_hit(h, origin, dir);

@@ -109,6 +109,7 @@ ConfigResult sample_result(size_t index, const std::string& technique, double ms
     SameBounceResult same;
     same.bounces = 2;
     same.brdf = "diffuse";
+    same.faces = "front";
     same.reference_set = {{"path_tracer.max_depth", "3"}, {"path_tracer.lambert", "true"}};
     same.reference_key = "fedcba9876543210";
     same.indirect = m;
@@ -164,7 +165,9 @@ TEST(BenchResults, JsonRoundTripKeepsEveryField) {
   EXPECT_EQ(back.results[1].same_bounce->reference_set.at("path_tracer.max_depth"), "3");
   EXPECT_DOUBLE_EQ(*back.results[1].same_bounce->missing_fraction, 0.125);
   EXPECT_DOUBLE_EQ(*back.results[1].same_bounce->reference_noise_rel_mse, 0.0625);
+  EXPECT_EQ(back.results[1].same_bounce->faces, "front");
   ASSERT_TRUE(back.results[2].same_bounce.has_value());
+  EXPECT_EQ(back.results[2].same_bounce->faces, "both");
   EXPECT_FALSE(back.results[2].same_bounce->indirect.has_value());
   EXPECT_FALSE(back.results[2].same_bounce->missing_fraction.has_value());
   EXPECT_FALSE(back.results[2].same_bounce->reference_noise_rel_mse.has_value());
@@ -185,9 +188,11 @@ TEST(BenchResults, ResultsWrittenBeforeFlipAndSameBounceStillRead) {
 TEST(BenchResults, ResultsWrittenBeforeReferenceNoiseStillRead) {
   nlohmann::json doc = to_json(sample_results());
   doc["results"][1]["same_bounce"].erase("reference_noise_rel_mse");
+  doc["results"][1]["same_bounce"].erase("faces");
   const BenchResults back = results_from_json(doc, "old/results.json");
   ASSERT_TRUE(back.results[1].same_bounce.has_value());
   EXPECT_FALSE(back.results[1].same_bounce->reference_noise_rel_mse.has_value());
+  EXPECT_EQ(back.results[1].same_bounce->faces, "both") << "as references were then";
   EXPECT_DOUBLE_EQ(*back.results[1].same_bounce->missing_fraction, 0.125);
 }
 
@@ -232,13 +237,14 @@ TEST(BenchResults, CsvHasOneQuotedRowPerConfiguration) {
       << rows[0];
   EXPECT_NE(rows[0].find(",full_indirect_rel_mse,"), std::string::npos);
   EXPECT_NE(rows[0].find(",missing_indirect_fraction,same_bounce_reference_key,gpu_memory_bytes,"
-                         "same_bounce_reference_noise_rel_mse"),
+                         "same_bounce_reference_noise_rel_mse,indirect_faces"),
             std::string::npos);
   EXPECT_NE(rows[2].find(",2,diffuse,0.1,0.9,0.25,-0.05,0.1,0.9,0.25,-0.05,0.125,fedcba9876543210"),
             std::string::npos)
       << rows[2];
-  EXPECT_EQ(rows[2].substr(rows[2].rfind(',')), ",0.0625") << rows[2];
-  EXPECT_EQ(rows[3].back(), ',') << "no reference noise without a same-bounce reference";
+  EXPECT_EQ(rows[2].substr(rows[2].size() - 13), ",0.0625,front") << rows[2];
+  EXPECT_EQ(rows[3].substr(rows[3].size() - 6), ",,both")
+      << "no reference noise without a same-bounce reference";
 }
 
 TEST(BenchReport, LikeWithLikeTableAndChart) {
@@ -257,10 +263,12 @@ TEST(BenchReport, LikeWithLikeTableAndChart) {
                         table),
             std::string::npos);
   // c001 has both references, c002 only its declaration, c000 no declaration.
-  EXPECT_NE(report.find("| c001 | vct, \"fast\" | cones=1 | 2, diffuse | -0.05 | 0.1 | 0.0625 | "
-                        "0.25 | -0.05 | 0.1 | 0.25 | 0.125 |",
-                        table),
-            std::string::npos)
+  EXPECT_NE(
+      report.find(
+          "| c001 | vct, \"fast\" | cones=1 | 2, diffuse, front faces | -0.05 | 0.1 | 0.0625 | "
+          "0.25 | -0.05 | 0.1 | 0.25 | 0.125 |",
+          table),
+      std::string::npos)
       << report.substr(table);
   EXPECT_NE(
       report.find("| c002 | vct, \"fast\" | cones=2 | 1, full | — | — | — | — | — | — | — | — |",

@@ -114,6 +114,26 @@ TEST(BenchSameBounce, SameBounceReferenceSettings) {
       same_bounce_reference_set({}, pass, IndirectModel{2, false});
   EXPECT_EQ(full.count("path_tracer.lambert"), 0u);
   EXPECT_EQ(full.at("path_tracer.max_depth"), "3");
+  EXPECT_EQ(full.count("path_tracer.single_sided"), 0u);
+  // A technique that lights single-sided materials' fronts only: so does its reference.
+  IndirectModel front{1, true};
+  front.front_faces_only = true;
+  EXPECT_EQ(same_bounce_reference_set({}, pass, front).at("path_tracer.single_sided"), "true");
+  EXPECT_EQ(front.terms(), "diffuse, front faces");
+}
+
+// "faces" is optional: both faces by default, as the path tracer shades them.
+TEST(BenchSameBounce, FacesDeclaration) {
+  const auto model_of = [](const std::string& indirect) {
+    const graph::GraphDesc desc =
+        graph::parse_graph(R"({ "name": "g", "indirect": )" + indirect +
+                               R"(, "passes": [], "outputs": { "display": "x" } })",
+                           "faces.json");
+    return *indirect_model_of(desc, {}, kMatte);
+  };
+  EXPECT_FALSE(model_of(R"({ "bounces": 1 })").front_faces_only);
+  EXPECT_FALSE(model_of(R"({ "bounces": 1, "faces": "both" })").front_faces_only);
+  EXPECT_TRUE(model_of(R"({ "bounces": 1, "faces": "front" })").front_faces_only);
 }
 
 TEST(BenchSameBounce, MissingFraction) {
@@ -150,8 +170,10 @@ TEST(BenchSameBounce, BadDeclarationsNameTheGraphFileAndField) {
       << message;
   EXPECT_NE(message.find("did you mean 'scene.has_glossy'"), std::string::npos) << message;
 
-  for (const char* bad : {R"({ "bounces": 1, "brdf": "glossy" })", R"({ "brdf": "full" })",
-                          R"({ "bounces": 1, "bounce": 2 })", R"(3)"}) {
+  for (const char* bad :
+       {R"({ "bounces": 1, "brdf": "glossy" })", R"({ "brdf": "full" })",
+        R"({ "bounces": 1, "bounce": 2 })", R"({ "bounces": 1, "faces": "back" })",
+        R"({ "bounces": 1, "faces": true })", R"(3)"}) {
     try {
       graph_with(bad);
       ADD_FAILURE() << "no error for " << bad;

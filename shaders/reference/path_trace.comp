@@ -31,10 +31,13 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #define HAS_ALPHA 0
 #endif
 uint g_filter_seed = 0u;
-#if HAS_ALPHA
+// Set while a camera ray of path_tracer.single_sided is traced (see bvh_hit_filter): the faces
+// the G-buffer culls do not stop it. A filter rather than a second trace from behind the culled
+// face, which would also pass a coincident face that the G-buffer draws.
+bool g_cull_backs = false;
+vec3 g_ray_dir = vec3(0.0);
 bool bvh_hit_filter(uint triangle, float u, float v);
 #define BVH_HIT_FILTER
-#endif
 #define BVH_SET 0
 #define BVH_FIRST_BINDING 1
 #include "lib/bvh_traversal.glsl"
@@ -118,20 +121,6 @@ float material_alpha(uint triangle, float u, float v, out uint alpha_mode, out f
   return scene_base_color(m, surface_attributes(s, u, v)).a;
 }
 
-#if HAS_ALPHA
-// MASK: the surface exists where alpha >= cutoff. BLEND: it exists with probability alpha,
-// decided per (ray, triangle) so that a ray sees one consistent answer.
-bool bvh_hit_filter(uint triangle, float u, float v) {
-  uint mode;
-  float cutoff;
-  float alpha = material_alpha(triangle, u, v, mode, cutoff);
-  if (mode == SCENE_ALPHA_OPAQUE) return true;
-  if (mode == SCENE_ALPHA_MASK) return alpha >= cutoff;
-  uint h = pcg_hash(g_filter_seed ^ pcg_hash(triangle));
-  return float(h >> 8u) * (1.0 / 16777216.0) < alpha;
-}
-#endif
-
 bool single_sided_material(uint triangle) {
   return scene_materials[bvh_shading[triangle].material].double_sided == 0u;
 }
@@ -140,6 +129,24 @@ bool single_sided_material(uint triangle) {
 // (the face the G-buffer culls).
 bool culled_back(uint triangle, vec3 ray_d) {
   return single_sided_material(triangle) && dot(bvh_triangle_front_normal(triangle), ray_d) > 0.0;
+}
+
+// Culled faces pass camera rays (g_cull_backs). Alpha, where the scene has it: MASK: the
+// surface exists where alpha >= cutoff. BLEND: it exists with probability alpha, decided per
+// (ray, triangle) so that a ray sees one consistent answer.
+bool bvh_hit_filter(uint triangle, float u, float v) {
+  if (g_cull_backs && culled_back(triangle, g_ray_dir)) return false;
+#if HAS_ALPHA
+  uint mode;
+  float cutoff;
+  float alpha = material_alpha(triangle, u, v, mode, cutoff);
+  if (mode == SCENE_ALPHA_OPAQUE) return true;
+  if (mode == SCENE_ALPHA_MASK) return alpha >= cutoff;
+  uint h = pcg_hash(g_filter_seed ^ pcg_hash(triangle));
+  return float(h >> 8u) * (1.0 / 16777216.0) < alpha;
+#else
+  return true;
+#endif
 }
 
 // Whether a ray along `ray_d` meets a single-sided material at (u, v) of `triangle` from the
@@ -360,21 +367,12 @@ void trace_path(uvec2 pixel, inout uint rng, out vec3 direct, out vec3 indirect)
   for (uint depth = 0u;; ++depth) {
     g_filter_seed = pcg_hash(rng);
     rng = g_filter_seed;
+    g_cull_backs = single_sided_mode && depth == 0u;
+    g_ray_dir = dir;
     BvhHit h = bvh_trace(origin, dir, 0.0, 3.0e38, pc.node_count, false);
-    if (single_sided_mode) {
-      // Camera rays pass through culled faces (a bounded number, so that a degenerate stack of
-      // them cannot hang the pass); a later ray ends on an unlit back.
-      for (uint skips = 0u; depth == 0u && h.hit && skips < 64u && culled_back(h.triangle, dir);
-           ++skips) {
-        vec3 ng = safe_normalize(bvh_triangle_normal(h.triangle), dir);
-        origin = offset_origin(origin + dir * h.t, ng, dir);
-        h = bvh_trace(origin, dir, 0.0, 3.0e38, pc.node_count, false);
-      }
-      if (h.hit && (depth == 0u ? culled_back(h.triangle, dir)
-                                : unlit_back(h.triangle, h.u, h.v, dir))) {
-        break;
-      }
-    }
+    g_cull_backs = false;
+    // A later ray ends on an unlit back.
+    if (single_sided_mode && depth > 0u && h.hit && unlit_back(h.triangle, h.u, h.v, dir)) break;
     if (!h.hit) break;  // no environment light
     if (depth == 1u && !within_first_bounce_distance(h.t)) break;
     Hit hit = shade_hit(h, origin, dir);

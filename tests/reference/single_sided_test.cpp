@@ -115,12 +115,15 @@ TEST_F(SingleSidedTest, ABackFaceSendsNoLightAndAFrontLosesNone) {
   }
 }
 
-enum class NearQuad { None, Plain, Mirrored };
+// The quad faces away from the camera, placed plainly or by a mirroring transform; or a pair of
+// coincident quads, one facing each way, as meshes exported with both sides often have.
+enum class NearQuad { None, Plain, Mirrored, CoincidentPair };
 
 // A camera looking at the back of a single-sided quad sees through it, as the G-buffer culls it:
 // the wall behind reads as it does with the quad taken away. Also when a mirroring transform
 // places the quad, which reverses its winding in world space but not its front (glTF). By
-// default the quad's back is shaded: dark here, since the light lies on its front side.
+// default the quad's back is shaded: dark here, since the light lies on its front side. Of a
+// coincident pair the camera sees the quad facing it, as the G-buffer does, not the wall.
 TEST_F(SingleSidedTest, CameraRaysPassThroughBackFaces) {
   auto scene_with = [](NearQuad near_quad) {
     scene::SceneBuilder b("back_face_before_a_wall");
@@ -134,6 +137,16 @@ TEST_F(SingleSidedTest, CameraRaysPassThroughBackFaces) {
     b.add_quad("wall", {-1.0f, -1.0f, 0.0f}, {2, 0, 0}, {0, 2, 0}, wall);
     if (near_quad == NearQuad::Plain) {
       b.add_quad("quad", {-0.3f, -0.3f, 1.0f}, {0, 0.6f, 0}, {0.6f, 0, 0}, near);
+    } else if (near_quad == NearQuad::CoincidentPair) {
+      // The same four vertices, each triangle once in each winding (both orders, so that
+      // neither face is the one a traversal happens to meet first everywhere).
+      std::vector<scene::Vertex> vertices(4);
+      const glm::vec2 corners[4] = {{-0.3f, -0.3f}, {0.3f, -0.3f}, {0.3f, 0.3f}, {-0.3f, 0.3f}};
+      for (int k = 0; k < 4; ++k) {
+        vertices[k].position = glm::vec3(corners[k], 1.0f);
+        vertices[k].normal = glm::vec3(0.0f);  // left to the builder: culling goes by winding
+      }
+      b.add_mesh("coincident_pair", vertices, {0, 1, 2, 0, 2, 1, 0, 3, 2, 0, 2, 3}, near);
     } else if (near_quad == NearQuad::Mirrored) {
       // Counter-clockwise about -z before the mirror x -> -x, clockwise after it.
       std::vector<scene::Vertex> vertices(4);
@@ -156,14 +169,18 @@ TEST_F(SingleSidedTest, CameraRaysPassThroughBackFaces) {
   auto with_single_sided = direct_only;
   with_single_sided["path_tracer.single_sided"] = "true";
   const RenderedImage open = render_output(scene_with(NearQuad::None), "direct", direct_only, 1);
-  for (NearQuad quad : {NearQuad::Plain, NearQuad::Mirrored}) {
-    const char* label = quad == NearQuad::Mirrored ? "mirrored quad" : "quad";
+  for (NearQuad quad : {NearQuad::Plain, NearQuad::Mirrored, NearQuad::CoincidentPair}) {
+    const char* label = quad == NearQuad::Mirrored         ? "mirrored quad"
+                        : quad == NearQuad::CoincidentPair ? "coincident pair"
+                                                           : "quad";
     const RenderedImage through = render_output(scene_with(quad), "direct", with_single_sided, 1);
     const RenderedImage shaded = render_output(scene_with(quad), "direct", direct_only, 1);
+    // The pair's quad facing the camera is unlit, as the back that the default shades.
+    const RenderedImage& expected = quad == NearQuad::CoincidentPair ? shaded : open;
     size_t covered = 0;
     for (size_t i = 0; i < open.rgba.size(); i += 4) {
       for (int c = 0; c < 3; ++c) {
-        EXPECT_NEAR(through.rgba[i + c], open.rgba[i + c], 1e-4f * open.rgba[i + c] + 1e-7f)
+        EXPECT_NEAR(through.rgba[i + c], expected.rgba[i + c], 1e-4f * expected.rgba[i + c] + 1e-7f)
             << label << ", pixel " << i / 4;
       }
       if (shaded.rgba[i + 1] == 0.0f && open.rgba[i + 1] > 0.0f) ++covered;

@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/scene/scene_builder.hpp"
+#include "tests/common/gi_energy.hpp"
 #include "tests/common/hard_case_scenes.hpp"
 #include "tests/common/render_harness.hpp"
 #include "tests/gpu/gpu_test_env.hpp"
@@ -67,14 +68,6 @@ RenderedImage render_output(const scene::Scene& scene, const std::string& output
   RenderHarness harness(setup);
   harness.render(frames);
   return harness.output(output);
-}
-
-double mean_luminance(const RenderedImage& image) {
-  double sum = 0.0;
-  for (size_t i = 0; i < image.rgba.size(); i += 4) {
-    sum += 0.2126 * image.rgba[i] + 0.7152 * image.rgba[i + 1] + 0.0722 * image.rgba[i + 2];
-  }
-  return sum / (image.rgba.size() / 4);
 }
 
 // One reflection off the square, counted as the deferred split counts it (an emitter's light at

@@ -177,11 +177,13 @@ TEST_F(VoxgiBenchErrors, CheckListsTheSameBounceReferences) {
   ASSERT_TRUE(exited_with(r, 0));
   EXPECT_TRUE(stdout_has(
       r, {"c000  vct  on cornell / default / 32x32  (reference ",
-          "indirect: 1 bounce, diffuse; same-bounce reference (path_tracer.lambert=true "
-          "path_tracer.max_depth=2 path_tracer.pixel_jitter=false) ",
+          "indirect: 1 bounce, diffuse, front faces; same-bounce reference "
+          "(path_tracer.lambert=true path_tracer.max_depth=2 path_tracer.pixel_jitter=false "
+          "path_tracer.single_sided=true) ",
           "c001  dvs dvs.bounces=0", "c002  dvs dvs.bounces=3",
-          "indirect: 4 bounces, diffuse; same-bounce reference (path_tracer.lambert=true "
-          "path_tracer.max_depth=5 path_tracer.pixel_jitter=false) "}));
+          "indirect: 4 bounces, diffuse, front faces; same-bounce reference "
+          "(path_tracer.lambert=true path_tracer.max_depth=5 path_tracer.pixel_jitter=false "
+          "path_tracer.single_sided=true) "}));
   // The default graph declares nothing: no same-bounce reference on its line.
   const size_t line = r.out.find("c003  default");
   ASSERT_NE(line, std::string::npos) << r.out;

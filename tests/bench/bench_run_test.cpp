@@ -287,11 +287,12 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
   const ProcessResult r = voxgi(
       {"bench", "gi.json", "--out", "gi", "--reference-cache", "cache", "--validation"}, options);
   ASSERT_TRUE(exited_with(r, 0));
-  EXPECT_TRUE(
-      stderr_has(r, {"same-bounce reference (path_tracer.lambert=true "
-                     "path_tracer.max_depth=2) for cornell / default / 32x32: not cached",
-                     "same-bounce reference (path_tracer.lambert=true "
-                     "path_tracer.max_depth=3) for cornell / default / 32x32: not cached"}));
+  EXPECT_TRUE(stderr_has(r, {"same-bounce reference (path_tracer.lambert=true "
+                             "path_tracer.max_depth=2 path_tracer.single_sided=true) for cornell / "
+                             "default / 32x32: not cached",
+                             "same-bounce reference (path_tracer.lambert=true "
+                             "path_tracer.max_depth=3 path_tracer.single_sided=true) for cornell / "
+                             "default / 32x32: not cached"}));
   const json results = read_json(dir_ / "gi" / "results.json");
   ASSERT_EQ(results["results"].size(), 3u);
   const std::string report = read_text(dir_ / "gi" / "report.md");
@@ -309,6 +310,9 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
     EXPECT_EQ(same["reference_set"]["path_tracer.lambert"], "true");
     EXPECT_EQ(same["reference_set"]["path_tracer.deferred_layers"], "true");
     EXPECT_EQ(same["reference_set"]["path_tracer.pixel_jitter"], "false");
+    EXPECT_EQ(same["reference_set"]["path_tracer.single_sided"], "true")
+        << "the shipped voxel graphs light single-sided materials on their front only";
+    EXPECT_EQ(same["faces"], "front");
     // The bench's reference already splits as the techniques do: it is the full one.
     EXPECT_EQ(same["full_reference_key"], item["reference_key"]);
     EXPECT_EQ(same["full_indirect"], item["metrics"]["indirect"]);
@@ -327,7 +331,7 @@ TEST_F(VoxgiBench, GiGraphsAreComparedLikeWithLikeAndWithImageReferences) {
     const std::vector<std::string> cells =
         split_cells(report.substr(row, report.find('\n', row) - row));
     ASSERT_EQ(cells.size(), 12u);
-    EXPECT_EQ(cells[3], std::to_string(bounces[i]) + ", diffuse");
+    EXPECT_EQ(cells[3], std::to_string(bounces[i]) + ", diffuse, front faces");
     EXPECT_TRUE(same_number(cells[5], same["indirect"]["rel_mse"]));
     EXPECT_TRUE(same_number(cells[6], same["reference_noise_rel_mse"]));
     EXPECT_TRUE(same_number(cells[11], missing));

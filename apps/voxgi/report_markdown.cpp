@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "apps/voxgi/report_charts.hpp"
+#include "apps/voxgi/report_convergence.hpp"
 
 namespace voxgi::cli {
 namespace {
@@ -203,6 +204,7 @@ void write_report(const std::filesystem::path& dir, const BenchResults& results)
     if (std::any_of(group.results.begin(), group.results.end(),
                     [](const ConfigResult* r) { return r->same_bounce.has_value(); })) {
       write_like_with_like_table(md, group);
+      md << convergence_markdown(convergence_grids(group.results));
     }
     md << "\n### Images\n\nReference, image and per-pixel relative error "
           "![heat map scale](charts/heat-scale.svg)\n\n";

@@ -75,6 +75,8 @@ std::optional<ConvergenceGrid> grid_of(const std::string& technique,
           grid.columns.begin());
     }
     ConvergenceCell& c = grid.cells[row * grid.columns.size() + column];
+    // Two entries of one label that differ only in what they set are not one sweep.
+    if (c.result) return std::nullopt;
     const SameBounceResult& s = *r->same_bounce;
     c.result = r;
     c.raw = s.indirect->rel_mse;

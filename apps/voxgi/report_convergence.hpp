@@ -35,7 +35,8 @@ struct ConvergenceGrid {
 
 // The grids of `results` (one group: same scene, camera and size): every technique whose
 // configurations all have a same-bounce error and sweep the same one or two settings, each
-// with numeric values; techniques with a single configuration have no grid.
+// with numeric values, each combination once; techniques with a single configuration have no
+// grid.
 std::vector<ConvergenceGrid> convergence_grids(const std::vector<const ConfigResult*>& results);
 
 // Relative rise of `higher_cost` over `lower_cost` (net errors), or nothing where either cell is

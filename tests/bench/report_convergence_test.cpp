@@ -111,9 +111,11 @@ TEST(BenchConvergence, TechniquesThatCannotBeLaidOutHaveNoGrid) {
                                        swept_result("single", {{"cones", "4"}}, 0.01, 0.0),
                                        swept_result("not finite", {{"cones", "nan"}}, 0.01, 0.0),
                                        swept_result("not finite", {{"cones", "4"}}, 0.01, 0.0),
+                                       swept_result("twice", {{"cones", "4"}}, 0.01, 0.0),
+                                       swept_result("twice", {{"cones", "4"}}, 0.02, 0.0),
                                        swept_result("undeclared", {{"cones", "4"}}, 0.01, 0.0),
                                        swept_result("undeclared", {{"cones", "9"}}, 0.01, 0.0)};
-  results[6].same_bounce.reset();
+  results[8].same_bounce.reset();
   EXPECT_TRUE(convergence_grids(pointers(results)).empty());
   EXPECT_EQ(convergence_markdown({}), "");
 }

@@ -1,6 +1,7 @@
 #include "apps/voxgi/report_convergence.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -12,14 +13,14 @@
 namespace voxgi::cli {
 namespace {
 
+// A swept value as a number (as the command line writes it, whatever the locale); nothing for
+// text or a non-finite value.
 std::optional<double> numeric(const std::string& text) {
-  try {
-    size_t used = 0;
-    const double value = std::stod(text, &used);
-    if (used == text.size() && std::isfinite(value)) return value;
-  } catch (const std::exception&) {
-  }
-  return std::nullopt;
+  double value = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
+  return value;
 }
 
 // The distinct values of `key` among `results`, in numeric order; empty when one is not a number.
@@ -47,8 +48,8 @@ std::optional<ConvergenceGrid> grid_of(const std::string& technique,
   for (const ConfigResult* r : results) {
     if (!r->same_bounce || !r->same_bounce->indirect) return std::nullopt;
     if (r->swept.size() != first.size()) return std::nullopt;
-    for (const auto& [key, value] : first) {
-      if (!r->swept.count(key)) return std::nullopt;
+    for (const auto& entry : first) {
+      if (!r->swept.count(entry.first)) return std::nullopt;
     }
   }
   ConvergenceGrid grid;
